@@ -1,0 +1,33 @@
+#pragma once
+// Plane geometry shared by every layer: points are Eigen 2-vectors, angles radians.
+
+#include <Eigen/Core>
+#include <cmath>
+#include <numbers>
+
+namespace la {
+
+using Vec2 = Eigen::Vector2d;
+
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Direction angle of a vector in (-pi, pi].
+inline double angleOf(const Vec2& v) { return std::atan2(v.y(), v.x()); }
+
+/// Unit vector at angle theta.
+inline Vec2 unitVector(double theta) { return {std::cos(theta), std::sin(theta)}; }
+
+/// Angle wrapped into (-pi, pi].
+inline double wrapAngle(double a) {
+  a = std::remainder(a, 2.0 * std::numbers::pi);
+  return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
+}
+
+/// Signed angle turning from direction a to direction b, in (-pi, pi]; left turn positive.
+inline double signedAngle(const Vec2& a, const Vec2& b) {
+  return std::atan2(cross(a, b), a.dot(b));
+}
+
+inline bool allFinite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+
+}  // namespace la

@@ -1,0 +1,253 @@
+#include "core/la_segment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "core/quadrature.h"
+
+namespace la {
+namespace {
+
+// The sampler's series path (panelBySeries) is used only where the turning over a
+// panel is at most this many radians: then a degree-11 Taylor polynomial of
+// (cos, sin) is exact to 1e-17 and 4-point Gauss-Legendre on the panel to ~1e-14 h.
+constexpr double kSeriesMaxTurning = 0.1;
+// ... and where the series of the turning in the law's local variable x converges
+// at least this fast (ratio of successive terms).
+constexpr double kSeriesMaxRatio = 0.1;
+constexpr int kSeriesMaxTerms = 24;
+
+std::string describe(double alpha, double length, double k0, double k1) {
+  return "alpha=" + std::to_string(alpha) + " length=" + std::to_string(length) +
+         " kappa_start=" + std::to_string(k0) + " kappa_end=" + std::to_string(k1);
+}
+
+// cos and sin of a small angle (|a| <= kSeriesMaxTurning) by Taylor polynomials.
+inline void smallSinCos(double a, double& c, double& s) {
+  const double a2 = a * a;
+  c = 1.0 - a2 / 2.0 * (1.0 - a2 / 12.0 * (1.0 - a2 / 30.0 * (1.0 - a2 / 56.0 * (1.0 - a2 / 90.0 * (1.0 - a2 / 132.0)))));
+  s = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0 * (1.0 - a2 / 42.0 * (1.0 - a2 / 72.0 * (1.0 - a2 / 110.0)))));
+}
+
+}  // namespace
+
+void CurveSamples::clear() {
+  s.clear();
+  point.clear();
+  tangent.clear();
+  theta.clear();
+  kappa.clear();
+}
+
+void CurveSamples::reserve(std::size_t n) {
+  s.reserve(n);
+  point.reserve(n);
+  tangent.reserve(n);
+  theta.reserve(n);
+  kappa.reserve(n);
+}
+
+LaSegment::LaSegment(double alpha, double length, Vec2 start, double theta0,
+                     double kappa_start, double kappa_end)
+    : alpha_(alpha), length_(length), start_(start), theta0_(theta0),
+      kappa_start_(kappa_start), kappa_end_(kappa_end) {
+  auto fail = [&](const std::string& why) {
+    throw std::invalid_argument("LA segment: " + why + " (" +
+                                describe(alpha, length, kappa_start, kappa_end) + ")");
+  };
+  if (std::isnan(alpha)) fail("alpha is NaN");
+  if (!(std::isfinite(length) && length > 0.0)) fail("length must be positive and finite");
+  if (!allFinite(start) || !std::isfinite(theta0)) fail("start or theta0 not finite");
+  if (!std::isfinite(kappa_start) || !std::isfinite(kappa_end)) fail("curvature not finite");
+  if (kappa_start * kappa_end < 0.0) fail("end curvatures of opposite sign");
+
+  const double a0 = std::abs(kappa_start), a1 = std::abs(kappa_end);
+  sign_ = (kappa_start + kappa_end > 0.0) ? 1.0 : (kappa_start + kappa_end < 0.0 ? -1.0 : 0.0);
+
+  if (std::isinf(alpha) || a0 == a1) {
+    if (a0 != a1) fail("alpha = inf (circle) needs equal end curvatures");
+    law_ = Law::kConstant;
+    kappa_ref_ = a0;
+    return;
+  }
+  if ((a0 == 0.0 || a1 == 0.0) && !(alpha < 0.0))
+    fail("a zero end curvature (inflection end) needs alpha < 0");
+
+  if (alpha == 0.0) {
+    law_ = Law::kExponential;
+    kappa_ref_ = a0;
+    growth_ = std::log(a0 / a1) / length;  // log rho grows by log(rho1/rho0) over L
+    return;
+  }
+  law_ = Law::kPower;
+  exponent_ = 1.0 - 1.0 / alpha;
+  if (a0 > 0.0) {
+    kappa_ref_ = a0;
+    v0_ = 1.0;
+    const double v1 = (a1 == 0.0) ? 0.0 : std::exp(alpha * std::log(a0 / a1));
+    if (!std::isfinite(v1)) fail("alpha too large for this curvature ratio (rho^alpha overflows)");
+    dv_ = (v1 - 1.0) / length;
+  } else {
+    kappa_ref_ = a1;
+    v0_ = 0.0;
+    dv_ = 1.0 / length;
+  }
+}
+
+LaSegment LaSegment::arc(double length, Vec2 start, double theta0, double kappa) {
+  return LaSegment(std::numeric_limits<double>::infinity(), length, start, theta0, kappa, kappa);
+}
+
+double LaSegment::kappa(double s) const {
+  switch (law_) {
+    case Law::kConstant:
+      return kappa_start_;
+    case Law::kExponential:
+      return sign_ * kappa_ref_ * std::exp(-growth_ * s);
+    case Law::kPower:
+      if (v0_ == 1.0) return sign_ * kappa_ref_ * std::exp(-std::log1p(dv_ * s) / alpha_);
+      return sign_ * kappa_ref_ * std::pow(std::max(dv_ * s, 0.0), -1.0 / alpha_);
+  }
+  return 0.0;
+}
+
+double LaSegment::dkappa(double s) const {
+  switch (law_) {
+    case Law::kConstant:
+      return 0.0;
+    case Law::kExponential:
+      return -growth_ * kappa(s);
+    case Law::kPower: {
+      const double v = std::max(v0_ + dv_ * s, 0.0);
+      return sign_ * kappa_ref_ * (-1.0 / alpha_) * std::pow(v, -1.0 / alpha_ - 1.0) * dv_;
+    }
+  }
+  return 0.0;
+}
+
+double LaSegment::unitTurning(double s) const {
+  switch (law_) {
+    case Law::kConstant:
+      return s;
+    case Law::kExponential:
+      return -std::expm1(-growth_ * s) / growth_;
+    case Law::kPower:
+      if (v0_ == 0.0) return std::pow(dv_ * s, exponent_) / (exponent_ * dv_);
+      // integral of (1 + dv t)^(-1/alpha) dt, written to stay exact as dv -> 0
+      {
+        const double y = std::log1p(dv_ * s);
+        return exponent_ == 0.0 ? y / dv_ : std::expm1(exponent_ * y) / (exponent_ * dv_);
+      }
+  }
+  return 0.0;
+}
+
+double LaSegment::theta(double s) const { return theta0_ + sign_ * kappa_ref_ * unitTurning(s); }
+
+Vec2 LaSegment::integratePositionAdaptive(double s0, double s1, double abs_tol) const {
+  auto tangent_at = [this](double t) -> Vec2 { return unitVector(theta(t)); };
+  return integrateAdaptive(tangent_at, s0, s1, abs_tol).value;
+}
+
+Vec2 LaSegment::position(double s, double relative_tolerance) const {
+  if (s == 0.0) return start_;
+  if (law_ == Law::kConstant) {  // exact chord of a circular arc (or a line)
+    const double half = 0.5 * kappa_start_ * s;
+    const double chord = (half == 0.0) ? s : 2.0 * std::sin(half) / kappa_start_;
+    return start_ + chord * unitVector(theta0_ + half);
+  }
+  return start_ + integratePositionAdaptive(0.0, s, relative_tolerance * length_);
+}
+
+LaSegment LaSegment::reversed() const {
+  return LaSegment(alpha_, length_, end(), theta(length_) + std::numbers::pi, -kappa_end_,
+                   -kappa_start_);
+}
+
+bool LaSegment::panelBySeries(double s0, double h, double theta_start, double theta_end,
+                              const Vec2& tangent_start, Vec2& delta) const {
+  if (std::abs(theta_end - theta_start) > kSeriesMaxTurning) return false;
+  // Turning over [s0, s0 + tau] is kappa(s0) * tau * G(x), x the law's local variable
+  // proportional to tau, G(x) = sum_k g_k x^k with g_0 = 1 and a two-term recurrence:
+  //   power law:       x = dv tau / v(s0), G = ((1+x)^e - 1)/(e x), g_k = g_{k-1}(e-k)/(k+1)
+  //   exponential law: x = g tau,          G = (1 - e^-x)/x,       g_k = -g_{k-1}/(k+1)
+  double x_end = 0.0, ratio_bound = 0.0;
+  if (law_ == Law::kPower) {
+    const double v = v0_ + dv_ * s0;
+    if (!(v > 0.0)) return false;
+    x_end = dv_ * h / v;
+    ratio_bound = std::abs(x_end) * std::max(1.0, std::abs(exponent_));
+  } else if (law_ == Law::kExponential) {
+    x_end = growth_ * h;
+    ratio_bound = std::abs(x_end);
+  }
+  if (ratio_bound > kSeriesMaxRatio) return false;
+
+  const double k_h = kappa(s0) * h;  // turning of the panel to first order
+  double coeff[kSeriesMaxTerms + 1];
+  coeff[0] = 1.0;
+  int terms = 0;
+  if (ratio_bound > 0.0) {
+    // enough terms that the tail is below 1e-17 of the panel length
+    const double needed = std::log(1e-17 / std::max(std::abs(k_h), 1e-300)) / std::log(ratio_bound);
+    terms = std::clamp(static_cast<int>(std::ceil(needed)), 1, kSeriesMaxTerms);
+  }
+  for (int k = 1; k <= terms; ++k)
+    coeff[k] = coeff[k - 1] * (law_ == Law::kPower ? (exponent_ - k) / (k + 1.0) : -1.0 / (k + 1.0));
+
+  const auto& rule = gaussLegendre<4>();
+  double cx = 0.0, cy = 0.0;
+  for (int j = 0; j < 4; ++j) {
+    const double t = rule.node[j];
+    const double x = x_end * t;
+    double g = coeff[terms];
+    for (int k = terms - 1; k >= 0; --k) g = g * x + coeff[k];
+    double c, s;
+    smallSinCos(k_h * t * g, c, s);
+    cx += rule.weight[j] * c;
+    cy += rule.weight[j] * s;
+  }
+  const double ct = tangent_start.x(), st = tangent_start.y();
+  delta = h * Vec2(ct * cx - st * cy, st * cx + ct * cy);
+  return true;
+}
+
+void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relative_tolerance) const {
+  if (n < 2) throw std::invalid_argument("LaSegment::sample: need at least 2 samples");
+  const double h = length_ / (n - 1);
+  const double panel_tol = relative_tolerance * length_ / (n - 1);
+  Vec2 p = start_;
+  double theta_prev = theta0_;
+  Vec2 tangent_prev = unitVector(theta0_);
+  for (int i = 0; i < n; ++i) {
+    const double s = (i == n - 1) ? length_ : i * h;
+    const double th = theta(s);
+    if (i > 0) {
+      const double s_prev = (i - 1) * h;
+      Vec2 delta;
+      if (!panelBySeries(s_prev, s - s_prev, theta_prev, th, tangent_prev, delta))
+        delta = integratePositionAdaptive(s_prev, s, panel_tol);
+      p += delta;
+    }
+    const Vec2 tangent = unitVector(th);
+    out.s.push_back(s_offset + s);
+    out.point.push_back(p);
+    out.tangent.push_back(tangent);
+    out.theta.push_back(th);
+    out.kappa.push_back(kappa(s));
+    theta_prev = th;
+    tangent_prev = tangent;
+  }
+}
+
+CurveSamples LaSegment::sample(int n) const {
+  CurveSamples out;
+  out.reserve(static_cast<std::size_t>(std::max(n, 0)));
+  sample(n, out);
+  return out;
+}
+
+}  // namespace la

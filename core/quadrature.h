@@ -1,0 +1,136 @@
+#pragma once
+// Gauss-Legendre quadrature: fixed rules and an adaptive integrator.
+//
+// Every curve in the project is an integral of its unit tangent, so this is the
+// numerical heart of evaluation. The fixed rules are computed once, to full double
+// precision, by Newton's method on the Legendre polynomial P_N (Golub-Welsch would do
+// as well; Newton is shorter and exact enough for N <= 64). The adaptive integrator
+// compares one rule on an interval with the same rule on its two halves and splits
+// where they disagree, so singular-but-integrable ends (an inflection end of an LA
+// segment, rho -> 0 or infinity) get their own small panels.
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <type_traits>
+#include <vector>
+
+namespace la {
+
+/// N-point Gauss-Legendre rule on [0, 1] (nodes ascending, weights summing to 1).
+template <int N>
+struct GaussLegendreRule {
+  std::array<double, N> node{};
+  std::array<double, N> weight{};
+};
+
+namespace detail {
+template <int N>
+GaussLegendreRule<N> computeGaussLegendre() {
+  GaussLegendreRule<N> rule;
+  for (int i = 0; i < (N + 1) / 2; ++i) {
+    // Chebyshev-like first guess of the i-th root of P_N on [-1, 1], then Newton.
+    double x = std::cos(std::numbers::pi * (i + 0.75) / (N + 0.5));
+    double dp = 0.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1.0, p1 = x;  // P_0, P_1; recurrence up to P_N
+      for (int k = 2; k <= N; ++k) {
+        const double pk = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = pk;
+      }
+      dp = N * (x * p1 - p0) / (x * x - 1.0);
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    const double w = 2.0 / ((1.0 - x * x) * dp * dp);
+    // Map [-1, 1] -> [0, 1]; roots come out descending from +1.
+    rule.node[N - 1 - i] = 0.5 * (1.0 + x);
+    rule.node[i] = 0.5 * (1.0 - x);
+    rule.weight[N - 1 - i] = rule.weight[i] = 0.5 * w;
+  }
+  return rule;
+}
+}  // namespace detail
+
+template <int N>
+const GaussLegendreRule<N>& gaussLegendre() {
+  static const GaussLegendreRule<N> rule = detail::computeGaussLegendre<N>();
+  return rule;
+}
+
+/// Applies the N-point rule to f on [a, b]. V needs +, and * by double.
+template <int N, class F>
+auto integrateFixed(F&& f, double a, double b) {
+  using V = std::decay_t<std::invoke_result_t<F&, double>>;
+  const auto& rule = gaussLegendre<N>();
+  const double h = b - a;
+  V sum = V(f(a + h * rule.node[0]) * rule.weight[0]);
+  for (int k = 1; k < N; ++k) sum += V(f(a + h * rule.node[k]) * rule.weight[k]);
+  return V(sum * h);
+}
+
+template <class V>
+struct QuadratureResult {
+  V value{};
+  double error_estimate = 0.0;  // sum of |coarse - fine| over accepted panels, same units as value
+  int panels = 0;
+  bool converged = false;       // false if a panel hit the depth limit
+};
+
+/// Norm used for error control: abs for scalars, max-abs for fixed-size vectors.
+template <class V>
+double quadratureNorm(const V& v) {
+  if constexpr (requires { v.cwiseAbs().maxCoeff(); }) {
+    return v.cwiseAbs().maxCoeff();
+  } else {
+    using std::abs;
+    return abs(v);
+  }
+}
+
+/// Adaptive Gauss-Legendre on [a, b] to an absolute tolerance: each panel is accepted
+/// when the 10-point rule on it and on its two halves agree within tol * panel/(b-a).
+/// The result is the finer estimate. max_depth bounds the bisection (2^-60 of the
+/// interval is below double resolution anyway).
+template <class F>
+auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth = 60) {
+  using V = decltype(integrateFixed<10>(f, a, b));
+  QuadratureResult<V> result;
+  const V first = integrateFixed<10>(f, a, b);
+  result.value = V(first * 0.0);
+  result.converged = true;
+  if (!(b > a)) return result;
+  const double total = b - a;
+  struct Panel {
+    double lo, hi;
+    V whole;
+    int depth;
+  };
+  std::vector<Panel> stack;
+  stack.push_back({a, b, first, 0});
+  while (!stack.empty()) {
+    const Panel p = stack.back();
+    stack.pop_back();
+    const double mid = 0.5 * (p.lo + p.hi);
+    const V left = integrateFixed<10>(f, p.lo, mid);
+    const V right = integrateFixed<10>(f, mid, p.hi);
+    const V fine = left + right;
+    const double err = quadratureNorm(V(fine - p.whole));
+    const double allowed = abs_tol * (p.hi - p.lo) / total;
+    if (err <= allowed || p.depth >= max_depth) {
+      if (err > allowed) result.converged = false;
+      result.value += fine;
+      result.error_estimate += err;
+      ++result.panels;
+    } else {
+      stack.push_back({mid, p.hi, right, p.depth + 1});
+      stack.push_back({p.lo, mid, left, p.depth + 1});
+    }
+  }
+  return result;
+}
+
+}  // namespace la

@@ -1,0 +1,259 @@
+#include "core/three_point_segment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "core/quadrature.h"
+#include "core/root_finding.h"
+
+namespace la {
+namespace {
+
+// Composite Gauss-Legendre in tau = theta/theta_d with kPanelNodes nodes per panel.
+// rho(tau) = (1 + A tau)^p has a branch point at tau* = -1/A outside [0, 1]; a panel
+// of width w whose near end is at distance delta >= w / kSingularWidthRatio from it
+// has a Bernstein ellipse parameter >= 2.8, so 16 nodes give ~1e-15 relative error.
+// Panels also keep (rate of log rho) * width <= kMaxLogRhoChange so that the nearly
+// exponential rho of alpha ~ 1 is resolved. Both constants from the standard GL error
+// bound rho_B^(-2n); checked against the adaptive rule in three_point_segment_test.
+constexpr int kPanelNodes = 16;
+constexpr double kSingularWidthRatio = 3.0;
+constexpr double kMaxLogRhoChange = 8.0;
+// The exponentials in the law overflow past ~709; keep |alpha m| and |(alpha-1) m| below.
+constexpr double kMaxExponent = 600.0;
+
+struct StandardEval {
+  Vec2 end = Vec2::Zero();     // E(m)
+  Vec2 d_end = Vec2::Zero();   // dE/dm
+  double length = 0.0;         // S(m) = integral of rho dtheta
+  double chordAngle() const { return std::atan2(end.y(), end.x()); }
+  double dChordAngle() const { return cross(end, d_end) / end.squaredNorm(); }
+};
+
+/// The standard-form curve of one (alpha, theta_d), evaluated for any shape m on a
+/// panel layout that is rebuilt only when m moves out of the layout's safe range, so
+/// cos/sin of the nodes are reused across Newton iterations.
+class StandardForm {
+ public:
+  StandardForm(double alpha, double theta_d) : alpha_(alpha), theta_d_(theta_d) {}
+
+  StandardEval eval(double m) {
+    const Law law = lawAt(m);
+    if (!layoutValid(law)) buildLayout(law);
+    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
+    for (std::size_t k = 0; k < tau_.size(); ++k) {
+      const double t = tau_[k];
+      double rho, drho;
+      if (law.unit_alpha) {
+        rho = std::exp(m * t);
+        drho = t * rho;
+      } else {
+        // b = 1 + A tau; near b -> 0 (A -> -1) written from the end so no digits cancel
+        const bool far = law.a >= -0.5;
+        const double b = far ? 1.0 + law.a * t : law.b_end - law.a * tau_c_[k];
+        rho = std::exp(law.p * (far ? std::log1p(law.a * t) : std::log(b)));
+        drho = rho * t * law.b_end / b;  // d rho/dm = rho tau (1 + A) / b
+      }
+      const double wr = weight_[k] * rho, wd = weight_[k] * drho;
+      ex += wr * cos_[k];
+      ey += wr * sin_[k];
+      dx += wd * cos_[k];
+      dy += wd * sin_[k];
+      len += wr;
+    }
+    StandardEval out;
+    out.end = theta_d_ * Vec2(ex, ey);
+    out.d_end = theta_d_ * Vec2(dx, dy);
+    out.length = theta_d_ * len;
+    return out;
+  }
+
+ private:
+  // rho(tau) = b(tau)^p with b = 1 + A tau, A = exp((alpha-1) m) - 1, p = 1/(alpha-1).
+  // b vanishes at the branch point tau* = -1/A, outside [0, 1]: before the start
+  // (A > 0) or past the end (A < 0), at `distance` from that end of the interval.
+  enum class Side { kNone, kStart, kEnd };
+  struct Law {
+    bool unit_alpha = false;
+    double a = 0.0, p = 0.0, b_end = 1.0, m = 0.0;
+    Side side = Side::kNone;
+    double distance = INFINITY;
+  };
+  Law lawAt(double m) const {
+    Law law;
+    law.m = m;
+    law.unit_alpha = (alpha_ == 1.0);
+    if (law.unit_alpha) return law;
+    law.a = std::expm1((alpha_ - 1.0) * m);
+    law.b_end = std::exp((alpha_ - 1.0) * m);
+    law.p = 1.0 / (alpha_ - 1.0);
+    if (law.a > 0.0) {
+      law.side = Side::kStart;
+      law.distance = 1.0 / law.a;
+    } else if (law.a < 0.0) {
+      law.side = Side::kEnd;
+      law.distance = law.b_end / -law.a;  // (1 + A)/|A| without cancellation
+    }
+    return law;
+  }
+  // Widest panel allowed at distance delta from the branch point: |b| = |A| delta there,
+  // so the rate of log rho is |p| / delta (|m| for alpha = 1).
+  static double maxWidth(const Law& law, double delta) {
+    if (law.unit_alpha) return law.m == 0.0 ? INFINITY : kMaxLogRhoChange / std::abs(law.m);
+    return delta * std::min(kSingularWidthRatio, kMaxLogRhoChange / std::abs(law.p));
+  }
+  bool layoutValid(const Law& law) const {
+    if (cuts_.empty()) return false;
+    for (std::size_t i = 0; i + 1 < cuts_.size(); ++i) {
+      // cuts_ are distances from the end the layout was graded towards
+      const double lo = cuts_[i], hi = cuts_[i + 1];
+      const double near = (law.side == layout_side_ || law.side == Side::kNone) ? lo : 1.0 - hi;
+      if (hi - lo > maxWidth(law, law.distance + near)) return false;
+    }
+    return true;
+  }
+  void buildLayout(const Law& law) {
+    // March from the end nearest the branch point (where rho varies fastest), each
+    // panel as wide as allowed: the widths grow geometrically.
+    constexpr int kMaxPanels = 400;  // past ~1e-200 of the interval; never reached for |m| <= 30
+    layout_side_ = law.side;
+    cuts_.assign(1, 0.0);
+    double x = 0.0;
+    while (x < 1.0) {
+      const double w = 0.999 * maxWidth(law, law.distance + x);
+      x = (w >= 1.0 - x || static_cast<int>(cuts_.size()) >= kMaxPanels) ? 1.0 : x + w;
+      cuts_.push_back(x);
+    }
+    const auto& rule = gaussLegendre<kPanelNodes>();
+    tau_.clear();
+    tau_c_.clear();
+    weight_.clear();
+    cos_.clear();
+    sin_.clear();
+    const bool from_end = (law.side == Side::kEnd);
+    for (std::size_t i = 0; i + 1 < cuts_.size(); ++i) {
+      const double lo = cuts_[i], w = cuts_[i + 1] - cuts_[i];
+      for (int k = 0; k < kPanelNodes; ++k) {
+        const double x_node = lo + w * rule.node[k];  // distance from the marching end
+        const double t = from_end ? 1.0 - x_node : x_node;
+        tau_.push_back(t);
+        tau_c_.push_back(from_end ? x_node : 1.0 - x_node);
+        weight_.push_back(w * rule.weight[k]);
+        cos_.push_back(std::cos(theta_d_ * t));
+        sin_.push_back(std::sin(theta_d_ * t));
+      }
+    }
+  }
+
+  double alpha_, theta_d_;
+  Side layout_side_ = Side::kNone;
+  std::vector<double> cuts_, tau_, tau_c_, weight_, cos_, sin_;
+};
+
+double maxShape(double alpha, const ThreePointOptions& options) {
+  return std::min(options.max_log_radius_ratio,
+                  kMaxExponent / std::max({std::abs(alpha), std::abs(alpha - 1.0), 1.0}));
+}
+
+std::string rangeText(const ChordAngleRange& r) {
+  return "(" + std::to_string(r.lo) + ", " + std::to_string(r.hi) + ") rad";
+}
+
+SegmentSolve badInput(SolveReport report) {
+  SegmentSolve out;
+  out.report = std::move(report);
+  out.report.status = SolveStatus::kBadInput;
+  return out;
+}
+
+}  // namespace
+
+ChordAngleRange reachableChordAngles(double alpha, double theta_d, const ThreePointOptions& options) {
+  if (std::isnan(alpha) || !(theta_d > 0.0 && theta_d < std::numbers::pi)) return {};
+  if (std::isinf(alpha)) return {0.5 * theta_d, 0.5 * theta_d};
+  StandardForm form(alpha, theta_d);
+  const double m_max = maxShape(alpha, options);
+  return {form.eval(-m_max).chordAngle(), form.eval(m_max).chordAngle()};
+}
+
+SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1, const Vec2& q2,
+                                    const ThreePointOptions& options) {
+  if (std::isnan(alpha)) {
+    SolveReport r;
+    r.message = "alpha is NaN";
+    return badInput(r);
+  }
+  ControlTriangle tri;
+  SolveReport check = analyzeTriangle(q0, q1, q2, tri);
+  if (!check.usable()) return badInput(check);
+
+  SegmentSolve out;
+  out.theta_d = tri.theta_d;
+  out.chord_angle = tri.chord_angle;
+  if (tri.theta_d == 0.0) {  // collinear, in order: the straight line is every LA curve's limit
+    out.segment = LaSegment::arc(tri.chord, q0, tri.heading, 0.0);
+    out.shape = 0.0;
+    out.report = {SolveStatus::kConverged, 0, 0.0, "collinear control points: straight line"};
+    return out;
+  }
+  const double target = tri.chord_angle;
+  const double theta_d = tri.theta_d;
+
+  // Finished curve from the standard form: scale, rotate, mirror, translate.
+  auto place = [&](double m, const StandardEval& e) {
+    const double scale = tri.chord / e.end.norm();
+    return LaSegment(alpha, scale * e.length, q0, tri.heading, tri.turn_sign / scale,
+                     tri.turn_sign * std::exp(-m) / scale);
+  };
+
+  if (std::isinf(alpha)) {  // circle only: the isosceles triangle
+    const double gap = std::abs(target - 0.5 * theta_d);
+    constexpr double kIsoscelesTolerance = 1e-12;  // relative to theta_d
+    if (gap > kIsoscelesTolerance * theta_d) {
+      out.reachable = {0.5 * theta_d, 0.5 * theta_d};
+      out.report = {SolveStatus::kInfeasible, 0, gap,
+                    "alpha = inf is a circular arc: only isosceles triangles (chord angle " +
+                        std::to_string(0.5 * theta_d) + " rad) are reachable"};
+      return out;
+    }
+    const double kappa = 2.0 * std::sin(0.5 * theta_d) / tri.chord;
+    out.segment = LaSegment::arc(theta_d / kappa, q0, tri.heading, tri.turn_sign * kappa);
+    out.shape = 0.0;
+    out.report = {SolveStatus::kConverged, 0, gap, "circular arc"};
+    return out;
+  }
+
+  StandardForm form(alpha, theta_d);
+  StandardEval last;
+  auto residual = [&](double m) {
+    last = form.eval(m);
+    return std::pair{last.chordAngle() - target, last.dChordAngle()};
+  };
+  const double m_max = maxShape(alpha, options);
+  const bool up = target > 0.5 * theta_d;  // chord angle grows with m; circle at m = 0
+  RootOptions root_options;
+  root_options.f_tol = options.chord_tolerance * theta_d;
+  root_options.x_tol = 1e-15;
+  root_options.max_iterations = options.max_iterations;
+  const RootResult root = up ? solveMonotone(residual, 0.0, m_max, 0.0, true, root_options)
+                             : solveMonotone(residual, -m_max, 0.0, 0.0, true, root_options);
+  out.report = root.report;
+  out.shape = root.x;
+  if (root.report.status == SolveStatus::kInfeasible) {
+    out.reachable = reachableChordAngles(alpha, theta_d, options);
+    out.report.message = "triangle not reachable with alpha = " + std::to_string(alpha) +
+                         ": chord angle " + std::to_string(target) + " rad, reachable " +
+                         rangeText(out.reachable) + " for turning angle " +
+                         std::to_string(theta_d) + " rad";
+    return out;
+  }
+  if (!root.report.usable()) return out;
+  // solveMonotone's last evaluation was at root.x, so `last` holds that curve.
+  out.segment = place(root.x, last);
+  return out;
+}
+
+}  // namespace la
