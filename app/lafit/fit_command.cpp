@@ -1,0 +1,66 @@
+// `lafit fit`: one input file (one or several strokes) to fair curves.
+
+#include <cstdio>
+#include <iostream>
+
+#include "app/lafit/commands.h"
+#include "app/lafit/fit_file.h"
+#include "app/lafit/fit_options.h"
+#include "app/lafit/outputs.h"
+
+namespace la::cli {
+namespace {
+
+constexpr const char* kHelp = R"(usage: lafit fit INPUT [options]
+
+Fairs every stroke of INPUT into a curve of log-aesthetic segments with continuous
+curvature, and prints its quality figures. INPUT is a point file (.csv/.txt: x,y[,t[,p]]
+per line, a blank line between strokes; airfoil .dat), the project's stroke .json, or
+an .svg (path, polyline and polygon elements).
+
+outputs:
+  -o FILE.json    the curves (shared format) with quality figures and timings
+  --svg FILE.svg  input points and fitted curves (add --comb for the curvature comb)
+  --csv FILE.csv  samples x,y,s,theta,kappa (a blank line between curves)
+  --dxf FILE.dxf  one SPLINE per curve
+
+)";
+
+void printFigures(const FileFit& fit) {
+  std::printf("%-6s %5s %6s %10s %10s %9s %9s %7s %7s %7s %9s\n", "stroke", "segs", "closed", "max_dev",
+              "rms_dev", "g1_gap", "g2_gap", "extrema", "inflect", "corners", "time_ms");
+  for (std::size_t i = 0; i < fit.strokes.size(); ++i) {
+    if (!fit.results[i]) {
+      std::printf("%-6zu error: %s\n", i + 1, fit.errors[i].c_str());
+      continue;
+    }
+    const FitResult& r = *fit.results[i];
+    const QualityFigures& q = r.quality;
+    std::printf("%-6zu %5d %6s %10.4g %10.4g %9.2g %9.2g %7d %7d %7d %9.3f\n", i + 1, q.segments,
+                r.curve.closed ? "yes" : "no", q.max_dev, q.rms_dev, q.g1_gap, q.g2_gap, q.extrema, q.inflections,
+                q.corners, r.timings.total_ms);
+    for (const std::string& w : r.warnings) std::printf("       warning: %s\n", w.c_str());
+  }
+}
+
+}  // namespace
+
+int fitCommand(const std::vector<std::string>& argv) {
+  std::set<std::string> valued = kOutputOptions, flags = kOutputFlags;
+  valued.insert(kFitValued.begin(), kFitValued.end());
+  flags.insert(kFitFlags.begin(), kFitFlags.end());
+  flags.insert("--help");
+  const Args args(argv, valued, flags);
+  if (args.has("--help")) {
+    std::cout << kHelp << kFitOptionsHelp;
+    return 0;
+  }
+  if (args.positional().size() != 1) throw UsageError("fit needs exactly one INPUT file");
+  const FitOptions options = fitOptionsFrom(args);
+  const FileFit fit = fitFile(args.positional()[0], options, args.has("--stages"));
+  printFigures(fit);
+  writeOutputs(args, fit.document, fit.curves(), fit.points());
+  return fit.failed() > 0 ? 1 : 0;
+}
+
+}  // namespace la::cli

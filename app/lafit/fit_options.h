@@ -1,0 +1,33 @@
+#pragma once
+// The fitting options lafit's `fit` and `batch` share, read from the command line.
+
+#include <set>
+#include <string>
+
+#include "app/lafit/cli_args.h"
+#include "fitting/pipeline.h"
+
+namespace la::cli {
+
+inline const std::set<std::string> kFitValued = {"--tolerance", "--tolerance-abs", "--max-extrema", "--g2",
+                                                 "--g2-threshold", "--significance"};
+inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--stages"};
+
+inline constexpr const char* kFitOptionsHelp = R"(fitting options:
+  --tolerance F        max distance from the points, as a fraction of the stroke's
+                       bounding-box diagonal (default 0.005)
+  --tolerance-abs D    max distance in the input's units (overrides --tolerance)
+  --max-extrema N      keep at most N curvature extrema (simplification; default: all significant)
+  --significance S     curvature extrema whose pair differs by less than S times the
+                       largest |curvature| are noise (default 0.08)
+  --g2 METHOD          newton (default: all joints at once), bisection (the paper's
+                       joint-by-joint method), or off (G1 only)
+  --g2-threshold T     relative curvature gap allowed at a joint (default 1e-6)
+  --no-corners         fair across sharp corners instead of keeping them
+  --no-close           never close a stroke whose end meets its start
+  --stages             include every intermediate stage in the JSON
+)";
+
+FitOptions fitOptionsFrom(const Args& args);
+
+}  // namespace la::cli

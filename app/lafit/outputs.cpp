@@ -1,0 +1,32 @@
+#include "app/lafit/outputs.h"
+
+#include <iostream>
+
+#include "app/io/curve_export.h"
+#include "core/atomic_file.h"
+
+namespace la::cli {
+
+void writeOutputs(const Args& args, const nlohmann::json& document, const std::vector<Curve>& curves,
+                  const std::vector<std::vector<Vec2>>& points) {
+  if (auto path = args.get("-o")) {
+    writeFileAtomically(*path, document.dump(2) + "\n");
+    std::cerr << "wrote " << *path << "\n";
+  }
+  if (auto path = args.get("--svg")) {
+    SvgOptions svg;
+    svg.show_comb = args.has("--comb");
+    writeFileAtomically(*path, curvesToSvg(curves, points, svg));
+    std::cerr << "wrote " << *path << "\n";
+  }
+  if (auto path = args.get("--csv")) {
+    writeFileAtomically(*path, curvesToCsv(curves));
+    std::cerr << "wrote " << *path << "\n";
+  }
+  if (auto path = args.get("--dxf")) {
+    writeFileAtomically(*path, curvesToDxf(curves));
+    std::cerr << "wrote " << *path << "\n";
+  }
+}
+
+}  // namespace la::cli

@@ -1,0 +1,23 @@
+#pragma once
+// Writes a command's curves to the files named by -o/--svg/--csv/--dxf, atomically.
+
+#include <string>
+#include <vector>
+
+#include "app/lafit/cli_args.h"
+#include "core/curve_json.h"
+#include "core/geometry.h"
+#include "nlohmann/json.hpp"
+
+namespace la::cli {
+
+/// Options every producing command accepts, for Args' `valued` set.
+inline const std::set<std::string> kOutputOptions = {"-o", "--svg", "--csv", "--dxf"};
+inline const std::set<std::string> kOutputFlags = {"--comb"};
+
+/// `document` is the JSON written with -o (the shared curve format plus whatever the
+/// command adds); `curves` and `points` feed the drawing formats.
+void writeOutputs(const Args& args, const nlohmann::json& document, const std::vector<Curve>& curves,
+                  const std::vector<std::vector<Vec2>>& points);
+
+}  // namespace la::cli

@@ -1,0 +1,277 @@
+#include "fitting/pipeline.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "core/lcg.h"
+#include "core/three_point_segment.h"
+
+namespace la {
+namespace {
+
+// LCG samples per piece, and the fraction dropped at each end: next to a curvature
+// extremum d kappa/ds -> 0 and log(rho |ds/drho|) runs off to infinity, which would
+// dominate the regression (seed 003 fits the LCG "of the segment"; we fit its interior).
+constexpr int kLcgSamples = 48;
+constexpr double kLcgTrim = 0.1;
+// Alpha used when the LCG says nothing (a piece of constant curvature: any alpha gives
+// the same near-circular segment), and the alpha with the widest reachable range,
+// towards which an infeasible alpha is moved.
+constexpr double kDefaultAlpha = -1.0;
+constexpr double kWidestAlpha = 0.5;
+constexpr int kAlphaBisections = 12;
+constexpr int kMaxRepairPasses = 3;
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+struct Part {
+  std::vector<Vec2> points;
+  bool closed = false;
+  bool starts_at_corner = false;
+};
+
+std::vector<Part> splitAtCorners(const CleanStroke& c) {
+  const auto& p = c.points;
+  if (c.corners.empty()) return {Part{p, c.closed, false}};
+  std::vector<std::size_t> cuts = c.corners;
+  if (!c.closed) {
+    cuts.insert(cuts.begin(), 0);
+    cuts.push_back(p.size() - 1);
+  } else {
+    cuts.push_back(p.size());  // back to the start (a corner at index 0)
+  }
+  std::vector<Part> parts;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    Part part;
+    for (std::size_t i = cuts[k]; i <= cuts[k + 1]; ++i) part.points.push_back(p[i % p.size()]);
+    part.starts_at_corner = c.closed || k > 0;
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
+bool withinChord(const std::vector<Vec2>& pts, double tol) {
+  const Vec2 a = pts.front(), b = pts.back();
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (!(len > 0.0)) return false;
+  for (const Vec2& p : pts) {
+    const double along = (p - a).dot(d) / len;
+    if (along < -tol || along > len + tol || std::abs(cross(d, p - a)) / len > tol) return false;
+  }
+  return true;
+}
+
+// LCG slope of the spline between t0 and t1 (analytic curvature and its derivative).
+LcgFit lcgOfPiece(const CubicBSpline& s, double t0, double t1) {
+  std::vector<double> kappa, dkappa;
+  const int first = static_cast<int>(kLcgTrim * kLcgSamples), last = kLcgSamples - first;
+  for (int k = first; k < last; ++k) {
+    const double t = t0 + (t1 - t0) * (k + 0.5) / kLcgSamples;
+    const auto d = s.derivatives(t, 3);
+    const double sp2 = d[1].squaredNorm(), sp = std::sqrt(sp2);
+    const double cr = cross(d[1], d[2]);
+    kappa.push_back(cr / (sp2 * sp));
+    const double dk_dt = (cross(d[1], d[3]) * sp2 - 3.0 * cr * d[1].dot(d[2])) / (sp2 * sp2 * sp);
+    dkappa.push_back(dk_dt / sp);
+  }
+  return fitLcg(lcgFromDerivative(kappa, dkappa));
+}
+
+// The alpha nearest `wanted` for which the triangle is reachable (bisection on
+// reachability between `wanted` and the widest-range alpha); NaN if none is.
+double nearestFeasibleAlpha(double wanted, const Vec2& q0, const Vec2& q1, const Vec2& q2) {
+  auto ok = [&](double a) { return solveThreePointSegment(a, q0, q1, q2).report.usable(); };
+  if (ok(wanted)) return wanted;
+  double good = NAN;
+  for (double a : {kWidestAlpha, 0.0, 0.9}) {
+    if (ok(a)) {
+      good = a;
+      break;
+    }
+  }
+  if (std::isnan(good)) return NAN;
+  double bad = wanted;
+  for (int k = 0; k < kAlphaBisections; ++k) {
+    const double mid = 0.5 * (good + bad);
+    (ok(mid) ? good : bad) = mid;
+  }
+  return good;
+}
+
+struct PartFit {
+  std::vector<LaSegment> segments;
+  std::vector<PieceReport> reports;
+  std::optional<CubicBSpline> spline;
+  std::vector<SplitPoint> splits;
+  SolveReport smoothing, g2;
+};
+
+}  // namespace
+
+namespace {
+
+// Stages 2-6 for one corner-free part.
+PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& options, StageTimings& timings,
+                std::vector<std::string>& warnings) {
+  PartFit out;
+  out.smoothing = {SolveStatus::kConverged, 0, 0.0, "straight"};
+  out.g2 = {SolveStatus::kConverged, 0, 0.0, "straight"};
+  if (!part.closed && (part.points.size() < 4 || withinChord(part.points, tol))) {
+    const Vec2 a = part.points.front(), b = part.points.back();
+    out.segments.push_back(LaSegment::arc((b - a).norm(), a, angleOf(b - a), 0.0));
+    PieceReport rep;
+    rep.kind = PieceKind::kThreePoint;
+    rep.alpha = rep.lcg_alpha = INFINITY;
+    rep.lcg_r2 = NAN;
+    out.reports.push_back(rep);
+    return out;
+  }
+  auto t0 = Clock::now();
+  SmoothingOptions so;
+  so.tolerance = tol;
+  SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
+  timings.smoothing_ms += msSince(t0);
+  out.smoothing = smooth.report;
+  if (!smooth.report.usable()) warnings.push_back("smoothing: " + smooth.report.message);
+  const CubicBSpline& spline = smooth.spline;
+  out.spline = spline;
+
+  t0 = Clock::now();
+  Segmentation seg = segmentSpline(spline, options.segmentation);
+  timings.segmentation_ms += msSince(t0);
+
+  const double period = spline.tMax() - spline.tMin();
+  for (int pass = 0;; ++pass) {
+    // Stage 4-5: chain of pieces with alpha from the LCG.
+    t0 = Clock::now();
+    const std::size_t n = seg.pieceCount();
+    Chain chain;
+    chain.closed = seg.closed;
+    std::vector<double> piece_t0(n), piece_t1(n);
+    for (std::size_t i = 0; i <= n; ++i) {
+      const SplitPoint& sp = seg.splits[i % seg.splits.size()];
+      chain.joints.push_back(spline.point(sp.t));
+      const double raw = splineTangentAngle(spline, sp.t);
+      chain.angles.push_back(i == 0 ? raw : chain.angles.back() + wrapAngle(raw - chain.angles.back()));
+    }
+    if (seg.closed) {
+      chain.joints.back() = chain.joints.front();
+      // the closing angle keeps the total turning; the direction is the start's
+      chain.angles.back() = chain.angles.front() + 2.0 * std::numbers::pi *
+                                                       std::round((chain.angles.back() - chain.angles.front()) / (2.0 * std::numbers::pi));
+    }
+    std::vector<PieceReport> reports(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const SplitPoint& a = seg.splits[i];
+      const SplitPoint& b = seg.splits[(i + 1) % seg.splits.size()];
+      PieceReport& rep = reports[i];
+      rep.t0 = a.t;
+      rep.t1 = (b.t > a.t) ? b.t : b.t + period;
+      rep.start_kind = a.kind;
+      rep.end_kind = b.kind;
+      ChainPiece piece;
+      const LcgFit lcg = lcgOfPiece(spline, rep.t0, rep.t1);
+      rep.lcg_alpha = lcg.alpha;
+      rep.lcg_r2 = lcg.r2;
+      if (a.kind == SplitKind::kInflection && b.kind != SplitKind::kInflection) {
+        piece.kind = PieceKind::kInflectionStart;
+      } else if (b.kind == SplitKind::kInflection && a.kind != SplitKind::kInflection) {
+        piece.kind = PieceKind::kInflectionEnd;
+      } else {
+        piece.kind = PieceKind::kThreePoint;
+        double alpha = lcg.report.usable() ? std::clamp(lcg.alpha, options.min_alpha, options.max_alpha) : kDefaultAlpha;
+        Vec2 q0, q1, q2;
+        chain.pieces.push_back(piece);  // controlTriangle reads only joints and angles
+        if (controlTriangle(chain, i, q0, q1, q2)) {
+          const double feasible = nearestFeasibleAlpha(alpha, q0, q1, q2);
+          if (!std::isnan(feasible) && feasible != alpha) {
+            rep.alpha_moved = true;
+            alpha = feasible;
+          }
+        }
+        chain.pieces.pop_back();
+        piece.alpha = alpha;
+      }
+      rep.kind = piece.kind;
+      rep.alpha = piece.alpha;
+      chain.pieces.push_back(piece);
+    }
+    timings.alpha_ms += msSince(t0);
+
+    // Stage 6.
+    t0 = Clock::now();
+    G2Options g2;
+    g2.method = options.g2;
+    g2.threshold = options.g2_threshold;
+    g2.diagonal = diag;
+    G2Result res = makeG2(chain, g2);
+    timings.g2_ms += msSince(t0);
+    if (res.segments.empty() && pass < kMaxRepairPasses) {
+      // Some piece has no LA segment (its tangents do not form a convex triangle, or no
+      // alpha reaches it): halve every piece that fails and try again.
+      std::vector<SplitPoint> splits;
+      for (std::size_t i = 0; i < n; ++i) {
+        splits.push_back(seg.splits[i]);
+        if (!solvePiece(chain, i).report.usable()) {
+          const double tm = spline.wrap(0.5 * (reports[i].t0 + reports[i].t1));
+          splits.push_back({tm, SplitKind::kTurning, spline.curvature(tm)});
+        }
+      }
+      if (!seg.closed) splits.push_back(seg.splits.back());
+      seg.splits = std::move(splits);
+      continue;
+    }
+    out.g2 = res.report;
+    if (res.segments.empty()) {
+      warnings.push_back("no LA segments for this part: " + res.report.message);
+      return out;
+    }
+    if (!res.report.usable()) warnings.push_back("G2: " + res.report.message);
+    for (std::size_t i = 0; i < n; ++i) {
+      reports[i].alpha = res.segments[i].alpha();  // inflection pieces solved theirs
+    }
+    out.segments = std::move(res.segments);
+    out.reports = std::move(reports);
+    out.splits = seg.splits;
+    return out;
+  }
+}
+
+}  // namespace
+
+FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
+  const auto start = Clock::now();
+  FitResult r;
+  r.cleaned = cleanStroke(stroke, options.cleanup);
+  r.timings.cleanup_ms = msSince(start);
+  const double diag = r.cleaned.diagonal;
+  r.tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
+  r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
+  r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
+
+  const std::vector<Part> parts = splitAtCorners(r.cleaned);
+  r.curve.closed = r.cleaned.closed;
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    PartFit fit = fitPart(parts[k], r.tolerance, diag, options, r.timings, r.warnings);
+    for (std::size_t i = 0; i < fit.segments.size(); ++i) {
+      r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
+      fit.reports[i].part = static_cast<int>(k);
+      r.pieces.push_back(fit.reports[i]);
+    }
+    if (fit.spline) r.splines.push_back(*fit.spline);
+    r.splits.push_back(fit.splits);
+    if (!fit.smoothing.usable()) r.smoothing = fit.smoothing;
+    if (!fit.g2.usable()) r.g2 = fit.g2;
+  }
+  const auto tq = Clock::now();
+  r.quality = measureQuality(r.curve, r.cleaned.points);
+  r.timings.quality_ms = msSince(tq);
+  r.timings.total_ms = msSince(start);
+  return r;
+}
+
+}  // namespace la

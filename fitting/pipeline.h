@@ -1,0 +1,81 @@
+#pragma once
+// The whole fitting pipeline of DESIGN.md section 3 (seed 003 section 3): a raw stroke
+// in, a fair curve of LA segments with continuous curvature out, with every
+// intermediate stage, the quality figures of DESIGN.md section 6 and per-stage timings.
+//
+//   1 cleanStroke      duplicates, hooks, corners, closed?           fitting/stroke.h
+//   2 smoothWithBSpline cubic B-spline within the tolerance           fitting/spline_smoothing.h
+//   3 segmentSpline    split at inflections and curvature extrema    fitting/segmentation.h
+//   4 alpha per piece  LCG regression (inflection pieces solve alpha)  core/lcg.h
+//   5 LA segment per piece from its control triangle                 fitting/chain.h
+//   6 makeG2           rotate joint tangents until curvature is continuous  fitting/g2_joints.h
+//   7 quality figures  fitting/quality.h
+// A stroke with deliberate corners is fitted piecewise between them; the segment after
+// a corner carries corner = true.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/bspline.h"
+#include "core/curve.h"
+#include "fitting/chain.h"
+#include "fitting/g2_joints.h"
+#include "fitting/quality.h"
+#include "fitting/segmentation.h"
+#include "fitting/spline_smoothing.h"
+#include "fitting/stroke.h"
+
+namespace la {
+
+struct FitOptions {
+  double tolerance_fraction = 0.005;  // max distance, relative to the stroke's bounding-box diagonal
+  double tolerance = 0.0;             // absolute max distance; overrides the fraction when > 0
+  CleanupOptions cleanup;
+  SegmentationOptions segmentation;   // significance, max_extrema, max_piece_turning
+  G2Method g2 = G2Method::kNewton;
+  double g2_threshold = 1e-6;
+  /// Alpha from the LCG is kept inside this range (a noisy LCG can be steep).
+  double min_alpha = -3.0, max_alpha = 3.0;
+};
+
+/// One piece of the segmentation and how its LA segment was made.
+struct PieceReport {
+  double t0 = 0.0, t1 = 0.0;  // spline parameters of its ends
+  SplitKind start_kind = SplitKind::kEnd, end_kind = SplitKind::kEnd;
+  PieceKind kind = PieceKind::kThreePoint;
+  double lcg_alpha = 0.0;     // slope of the LCG regression on the smoothed piece (NaN if none)
+  double lcg_r2 = 0.0;
+  double alpha = 0.0;         // alpha used (moved into the feasible range if needed)
+  bool alpha_moved = false;
+  int part = 0;               // which corner-to-corner part it belongs to
+};
+
+/// Wall time per stage. Stage 5 (one LA segment per piece) has no line of its own:
+/// its solves happen inside alpha_ms (feasibility of each piece's alpha) and g2_ms
+/// (the first build of the chain and every rebuild while the joints move).
+struct StageTimings {
+  double cleanup_ms = 0, smoothing_ms = 0, segmentation_ms = 0, alpha_ms = 0, g2_ms = 0, quality_ms = 0,
+         total_ms = 0;
+};
+
+struct FitResult {
+  Curve curve;
+  QualityFigures quality;
+  StageTimings timings;
+  CleanStroke cleaned;
+  double tolerance = 0.0;  // absolute, as used
+  std::vector<CubicBSpline> splines;  // stage 2, one per part (straight parts have none)
+  std::vector<std::vector<SplitPoint>> splits;  // stage 3, per part
+  std::vector<PieceReport> pieces;    // stages 4-5, one per segment of `curve`
+  SolveReport smoothing;              // worst part's smoothing report
+  SolveReport g2;                     // worst part's G2 report
+  std::vector<std::string> warnings;
+};
+
+/// Throws StrokeError for a stroke that cannot be fitted (too few distinct points,
+/// all collinear). Solver trouble (tolerance not reached, G2 not converged) is
+/// reported in the result and its warnings, with the curve as far as it got.
+FitResult fitStroke(const Stroke& stroke, const FitOptions& options = {});
+
+}  // namespace la

@@ -1,0 +1,31 @@
+#pragma once
+// The quality figures of DESIGN.md section 6, one definition everywhere (lafit, the GUI,
+// the tests): deviation of the input points from the curve, tangent and curvature gaps
+// at joints, and the number of curvature extrema and inflections.
+
+#include <vector>
+
+#include "core/curve.h"
+#include "core/geometry.h"
+
+namespace la {
+
+struct QualityFigures {
+  double max_dev = 0.0;   // largest distance from an input point to the curve
+  double rms_dev = 0.0;
+  double g1_gap = 0.0;    // largest tangent-angle jump at a (non-corner) joint, radians
+  double g2_gap = 0.0;    // largest relative curvature jump at a (non-corner) joint
+  int extrema = 0;        // curvature extrema along the curve (trend changes at joints)
+  int inflections = 0;    // curvature sign changes
+  int segments = 0;
+  int corners = 0;
+  double diagonal = 0.0;  // bounding-box diagonal of the input points
+};
+
+/// Distances from each point to the curve (a dense polyline of the curve, searched near
+/// the previous point's foot first, everywhere when that is not close).
+std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal);
+
+QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
+
+}  // namespace la

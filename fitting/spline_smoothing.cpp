@@ -1,0 +1,211 @@
+#include "fitting/spline_smoothing.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace la {
+namespace {
+
+// A span is split only while it holds this many points: below that, a point out of
+// tolerance is noise (or an outlier) the spline should not chase.
+constexpr int kMinPointsToSplit = 6;
+// Up to this many control points the normal equations are solved dense (faster than
+// the sparse factorization's set-up); above, sparse LDLT.
+constexpr int kDenseLimit = 48;
+
+// Chord-length parameters in [0, 1]; for a closed stroke the closing chord counts too
+// and 1 is the start again.
+std::vector<double> chordParameters(const std::vector<Vec2>& pts, bool closed) {
+  std::vector<double> t(pts.size(), 0.0);
+  for (std::size_t i = 1; i < pts.size(); ++i) t[i] = t[i - 1] + (pts[i] - pts[i - 1]).norm();
+  double total = t.back();
+  if (closed) total += (pts.front() - pts.back()).norm();
+  for (double& v : t) v /= total;
+  return t;
+}
+
+CubicBSpline makeSpline(const std::vector<double>& breaks, std::vector<Vec2> control, bool closed) {
+  return closed ? CubicBSpline::periodic(breaks, control) : CubicBSpline::clamped(breaks, std::move(control));
+}
+
+int controlCount(const std::vector<double>& breaks, bool closed) {
+  const int spans = static_cast<int>(breaks.size()) - 1;
+  return closed ? spans : spans + 3;
+}
+
+// Solves the penalized least squares for fixed breaks and parameters.
+bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
+                  bool closed, double weight, std::vector<Vec2>& control) {
+  const int n = controlCount(breaks, closed);
+  // A template spline (zero control) gives the knot vector and basis functions.
+  const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(pts.size() * 16 + breaks.size() * 16);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  double ders[4][4];
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const int sp = shape.span(t[i]);
+    shape.basis(sp, shape.wrap(t[i]), ders, 0);
+    for (int a = 0; a < 4; ++a) {
+      const int ia = shape.controlIndex(sp - 3 + a);
+      rhs(ia, 0) += ders[0][a] * pts[i].x();
+      rhs(ia, 1) += ders[0][a] * pts[i].y();
+      for (int b = 0; b < 4; ++b) triplets.emplace_back(ia, shape.controlIndex(sp - 3 + b), ders[0][a] * ders[0][b]);
+    }
+  }
+  // Jerk energy: C''' is constant on each span, so integral = sum over spans of width * |C'''|^2.
+  const double scale = weight * static_cast<double>(pts.size());
+  for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
+    const double width = breaks[j + 1] - breaks[j];
+    const double mid = 0.5 * (breaks[j] + breaks[j + 1]);
+    const int sp = shape.span(mid);
+    shape.basis(sp, mid, ders);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b)
+        triplets.emplace_back(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b),
+                              scale * width * ders[3][a] * ders[3][b]);
+  }
+  Eigen::MatrixXd x;
+  if (n <= kDenseLimit) {
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+    for (const auto& e : triplets) dense(e.row(), e.col()) += e.value();
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(dense);
+    if (ldlt.info() != Eigen::Success) return false;
+    x = ldlt.solve(rhs);
+  } else {
+    Eigen::SparseMatrix<double> a(n, n);
+    a.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
+    if (ldlt.info() != Eigen::Success) return false;
+    x = ldlt.solve(rhs);
+  }
+  if (!x.allFinite()) return false;
+  control.resize(n);
+  for (int k = 0; k < n; ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+  return true;
+}
+
+// Newton steps towards the foot point of each X_i; returns per-point distances.
+void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts, int steps,
+                       std::vector<double>& t, std::vector<double>& dist) {
+  dist.resize(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    double ti = t[i];
+    for (int k = 0; k < steps; ++k) {
+      const auto d = spline.derivatives(ti, 2);
+      const Vec2 r = d[0] - pts[i];
+      const double g = r.dot(d[1]), h = d[1].squaredNorm() + r.dot(d[2]);
+      if (!(h > 0.0)) break;
+      ti = spline.isPeriodic() ? ti - g / h : std::clamp(ti - g / h, spline.tMin(), spline.tMax());
+    }
+    t[i] = ti;
+    dist[i] = (spline.point(ti) - pts[i]).norm();
+  }
+}
+
+struct Attempt {
+  std::vector<Vec2> control;
+  std::vector<double> t, dist;
+  double max_error = INFINITY;
+};
+
+// One fit at fixed breaks and weight, with foot-point correction.
+bool attempt(const std::vector<Vec2>& pts, const std::vector<double>& breaks, bool closed, double weight,
+             int steps, Attempt& a) {
+  if (!solveControl(pts, a.t, breaks, closed, weight, a.control)) return false;
+  const CubicBSpline spline = makeSpline(breaks, a.control, closed);
+  correctParameters(spline, pts, steps, a.t, a.dist);
+  a.max_error = *std::max_element(a.dist.begin(), a.dist.end());
+  return true;
+}
+
+}  // namespace
+
+SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
+  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
+  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
+  const int min_spans = closed ? 4 : 1;
+  std::vector<double> breaks;
+  const int spans0 = std::max(min_spans, options.initial_spans);
+  for (int j = 0; j <= spans0; ++j) breaks.push_back(static_cast<double>(j) / spans0);
+
+  Attempt current;
+  current.t = chordParameters(pts, closed);
+  double weight = options.fairness;
+  SmoothingResult result{makeSpline(breaks, std::vector<Vec2>(controlCount(breaks, closed), Vec2::Zero()), closed),
+                         {}, 0, 0, 0, 0, {}};
+  int round = 0;
+  for (; round < options.max_rounds; ++round) {
+    if (!attempt(pts, breaks, closed, weight, options.foot_point_steps, current)) {
+      result.report = {SolveStatus::kBadInput, round, INFINITY, "B-spline least squares is singular"};
+      return result;
+    }
+    if (current.max_error <= options.tolerance) break;
+    // Split every span holding a point out of tolerance (if it holds enough points).
+    const CubicBSpline spline = makeSpline(breaks, current.control, closed);
+    const int spans = static_cast<int>(breaks.size()) - 1;
+    std::vector<int> bad(spans, 0), count(spans, 0);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const int j = std::clamp(spline.span(current.t[i]) - 3, 0, spans - 1);
+      ++count[j];
+      if (current.dist[i] > options.tolerance) bad[j] = 1;
+    }
+    std::vector<double> next{breaks.front()};
+    bool split = false;
+    for (int j = 0; j < spans; ++j) {
+      if (bad[j] && count[j] >= kMinPointsToSplit && spans + 1 <= options.max_spans) {
+        next.push_back(0.5 * (breaks[j] + breaks[j + 1]));
+        split = true;
+      }
+      next.push_back(breaks[j + 1]);
+    }
+    if (!split) break;
+    breaks = std::move(next);
+  }
+  result.rounds = round + 1;
+
+  // Raise the fairness weight as far as the tolerance allows.
+  if (current.max_error <= options.tolerance && options.fairness_steps > 0) {
+    double lo = std::log(weight), hi = std::log(options.max_fairness);
+    const double limit = options.fairness_margin * options.tolerance;
+    Attempt probe = current;
+    probe.t = current.t;
+    if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && probe.max_error <= limit) {
+      current = probe;
+      weight = options.max_fairness;
+    } else {
+      for (int k = 0; k < options.fairness_steps; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        Attempt trial = current;
+        if (attempt(pts, breaks, closed, std::exp(mid), options.foot_point_steps, trial) && trial.max_error <= limit) {
+          current = std::move(trial);
+          lo = mid;
+          weight = std::exp(mid);
+        } else {
+          hi = mid;
+        }
+      }
+    }
+  }
+
+  result.spline = makeSpline(breaks, current.control, closed);
+  result.parameters = current.t;
+  result.max_error = current.max_error;
+  double sum = 0.0;
+  for (double d : current.dist) sum += d * d;
+  result.rms_error = std::sqrt(sum / current.dist.size());
+  result.fairness = weight;
+  const bool ok = current.max_error <= options.tolerance;
+  result.report = {ok ? SolveStatus::kConverged : SolveStatus::kIterationLimit, result.rounds, current.max_error,
+                   ok ? "within tolerance with " + std::to_string(breaks.size() - 1) + " spans"
+                      : "tolerance not reached with " + std::to_string(breaks.size() - 1) + " spans (max error " +
+                            std::to_string(current.max_error) + ")"};
+  return result;
+}
+
+}  // namespace la

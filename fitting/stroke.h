@@ -1,0 +1,104 @@
+#pragma once
+// A pen stroke as recorded, and the clean-up before fitting (DESIGN.md section 3,
+// stage 1): NaNs and duplicate points out, pen-down / pen-up hooks trimmed, deliberate
+// corners found, closed strokes recognised. The raw stroke is never modified.
+//
+// The steps, in order (fitting/stroke.cpp explains each one and its constants):
+//  1. drop non-finite samples, then consecutive duplicates (distance <= 1e-9 of the
+//     bounding-box diagonal; the first of a run is kept);
+//  2. pen-down outlier: while the first step is longer than outlier_step_factor times
+//     the median step, drop the first point (at most 2 points; open strokes only). Such a
+//     jump is not drawn geometry (MMG stylus data: a first point 12-33 px away when the
+//     steps are 3-5 px), so its length does not count in the hook budget below;
+//  3. closed? (detect_closed): the end comes back within close_fraction * diagonal of
+//     the start, or the last part of the stroke passes within that distance of the start
+//     (an overlap, e.g. a circle drawn past its start), in which case everything after the
+//     point nearest the start is cut. assume_closed skips the test (glyph contours, SVG
+//     paths with Z): the stroke is closed whatever its gap;
+//  4. hooks (open strokes only): a short straight end piece (<= hook_max_fraction of the
+//     length) that meets the rest at a sharp turn of more than hook_min_angle is cut.
+//     Directions are chords over an arc-length window, so 1-px quantization does not
+//     trigger it, and a smooth end curl (the tail of a brace) is not a hook. At least 3
+//     points and 70% of the drawn length always remain. After trimming, 3 is tried again;
+//  5. corners (detect_corners): see the options;
+//  6. throws StrokeError if fewer than 3 distinct points remain or they are collinear.
+//
+// Closed strokes: `points` do not repeat the first point at the end (the closing step
+// runs from points.back() to points.front()). A closed stroke that has corners is
+// rotated so that its first corner is at index 0 (corners.front() == 0); `source` is
+// rotated with it. Without corners the original start is kept.
+
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace la {
+
+struct StrokeSample {
+  Vec2 p = Vec2::Zero();
+  double t = std::numeric_limits<double>::quiet_NaN();         // time stamp (ms), NaN if unknown
+  double pressure = std::numeric_limits<double>::quiet_NaN();  // 0..1 or device units, NaN if unknown
+};
+
+struct Stroke {
+  std::vector<StrokeSample> samples;
+};
+
+struct StrokeError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+struct CleanupOptions {
+  /// Pen-down outlier: a first step longer than this many median steps is a jump, not
+  /// drawing (0 or less: off). Pen-down first steps are short: in the $1 stylus data they
+  /// are 0.3-1.3 median steps, in the MMG data the outliers are 2.7-11 median steps.
+  double outlier_step_factor = 3.0;
+  /// Hooks: an end piece no longer than this fraction of the stroke length that
+  /// turns by more than hook_min_angle against the rest is cut off.
+  double hook_max_fraction = 0.12;
+  double hook_min_angle = 1.2;  // radians (~70 degrees)
+  /// Corners: a point where the stroke turns by more than corner_min_angle within a
+  /// short window (corner_window of the stroke length, at least 2 samples a side) is a
+  /// deliberate corner; the stroke is faired piecewise between corners. The turn must be
+  /// sharp: measured over half the window it must still be most of the turn (a circular
+  /// arc turns half as much over half the window; a corner turns as much), so a small
+  /// circle or a question mark's top is not a corner. One corner gives one index (the
+  /// point farthest from the chord across the window).
+  bool detect_corners = true;
+  double corner_min_angle = 1.0;  // radians (~57 degrees)
+  double corner_window = 0.03;
+  /// Closed: the end comes back within this fraction of the bounding-box diagonal of
+  /// the start (or crosses over it); the overlap is cut and the curve closes.
+  bool detect_closed = true;
+  double close_fraction = 0.06;
+  /// The input is known to be a closed contour (a font outline, an SVG path ending in Z):
+  /// closed whatever the gap between its ends; no outlier or hook trimming.
+  bool assume_closed = false;
+};
+
+struct CleanStroke {
+  std::vector<Vec2> points;          // the points to fit, in order
+  std::vector<std::size_t> source;   // index of each point in the raw stroke
+  /// Indices into `points` of deliberate corners, increasing. Open stroke: interior
+  /// points only (at least 2 samples from either end). Closed stroke: index 0 is allowed,
+  /// and if there is any corner, corners.front() == 0 (the points are rotated so).
+  std::vector<std::size_t> corners;
+  bool closed = false;
+  std::size_t trimmed_start = 0;     // raw samples removed as a pen-down hook / outlier
+  std::size_t trimmed_end = 0;       // raw samples removed as a pen-up hook
+  std::size_t removed_overlap = 0;   // raw samples cut where a closed stroke overlaps its start
+  std::size_t removed_invalid = 0;   // NaN / infinite samples dropped
+  std::size_t removed_duplicates = 0;
+  double diagonal = 0.0;             // bounding-box diagonal of `points`
+  // Every raw sample is accounted for exactly once:
+  // samples = points + trimmed_start + trimmed_end + removed_overlap + removed_invalid
+  //           + removed_duplicates.
+};
+
+/// Throws StrokeError if fewer than 3 distinct finite points remain or all of them lie
+/// on one straight line (nothing to fair); the message gives the counts.
+CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options = {});
+
+}  // namespace la
