@@ -4,40 +4,38 @@
 #include <numbers>
 #include <string>
 
-#include "core/quadrature.h"
 #include "core/root_finding.h"
 
 namespace la {
 namespace {
 
-// F(q) = integral_0^1 exp(i theta_d u^q) du and dF/dq, with v = 1/q.
+// F(v) = integral_0^1 exp(i theta_d u^(1/v)) du. Expanding the exponential and
+// integrating term by term (u^(k/v) integrates to v/(k+v)) gives a series that
+// converges like theta_d^k / k! for every v in (0, 1], with no quadrature:
+//   F(v) = sum_k c_k v/(k+v),   dF/dv = sum_k c_k k/(k+v)^2,   c_k = (i theta_d)^k / k!.
+// For theta_d < pi the terms are below 1e-17 of the sum after kSeriesTerms terms
+// (pi^40 / 40! ~ 1e-28); the largest term is ~ e^pi, so ~2 digits cancel at worst.
+constexpr int kSeriesTerms = 40;
+
 struct InflectionEval {
   Vec2 f = Vec2::Zero();
-  Vec2 df_dq = Vec2::Zero();
+  Vec2 df_dv = Vec2::Zero();
   double chordAngle() const { return std::atan2(f.y(), f.x()); }
-  double dChordAngleDv(double v) const {  // dq/dv = -1/v^2
-    return -cross(f, df_dq) / f.squaredNorm() / (v * v);
-  }
+  double dChordAngleDv() const { return cross(f, df_dv) / f.squaredNorm(); }
 };
 
-InflectionEval evalStandard(double theta_d, double v, double relative_tolerance) {
-  const double q = 1.0 / v;
-  auto integrand = [&](double u) -> Eigen::Matrix<double, 4, 1> {
-    const double uq = std::pow(u, q);
-    const double th = theta_d * uq;
-    const double c = std::cos(th), s = std::sin(th);
-    const double g = theta_d * uq * std::log(u);  // d theta / dq; -> 0 as u -> 0
-    Eigen::Matrix<double, 4, 1> out;
-    out << c, s, -g * s, g * c;  // d/dq exp(i theta) = i g exp(i theta)
-    return out;
-  };
-  // |F| >= cos(theta_d / 2) > 0 for theta_d < pi (every tangent within theta_d/2 of
-  // the mean direction), a floor for the absolute tolerance.
-  const double floor = std::max(std::cos(0.5 * theta_d), 1e-3);
-  const auto r = integrateAdaptive(integrand, 0.0, 1.0, relative_tolerance * floor);
+InflectionEval evalStandard(double theta_d, double v) {
   InflectionEval e;
-  e.f = r.value.head<2>();
-  e.df_dq = r.value.tail<2>();
+  double cr = 1.0, ci = 0.0;  // c_k = (i theta_d)^k / k!
+  for (int k = 0; k < kSeriesTerms; ++k) {
+    const double w = v / (k + v), dw = k / ((k + v) * (k + v));
+    e.f += Vec2(cr * w, ci * w);
+    e.df_dv += Vec2(cr * dw, ci * dw);
+    const double scale = theta_d / (k + 1);  // c_{k+1} = c_k * i theta_d / (k+1)
+    const double nr = -ci * scale, ni = cr * scale;
+    cr = nr;
+    ci = ni;
+  }
   return e;
 }
 
@@ -61,8 +59,8 @@ SegmentSolve solveAtStart(const Vec2& q0, const Vec2& q1, const Vec2& q2, const 
   const double v_lo = vOfAbsAlpha(options.min_abs_alpha), v_hi = vOfAbsAlpha(options.max_abs_alpha);
   InflectionEval last;
   auto residual = [&](double v) {
-    last = evalStandard(theta_d, v, options.relative_tolerance);
-    return std::pair{last.chordAngle() - target, last.dChordAngleDv(v)};
+    last = evalStandard(theta_d, v);
+    return std::pair{last.chordAngle() - target, last.dChordAngleDv()};
   };
   RootOptions root_options;
   root_options.f_tol = options.chord_tolerance * theta_d;
@@ -94,8 +92,8 @@ SegmentSolve solveAtStart(const Vec2& q0, const Vec2& q1, const Vec2& q2, const 
 
 ChordAngleRange reachableInflectionChordAngles(double theta_d, const InflectionOptions& options) {
   if (!(theta_d > 0.0 && theta_d < std::numbers::pi)) return {};
-  return {evalStandard(theta_d, vOfAbsAlpha(options.min_abs_alpha), options.relative_tolerance).chordAngle(),
-          evalStandard(theta_d, vOfAbsAlpha(options.max_abs_alpha), options.relative_tolerance).chordAngle()};
+  return {evalStandard(theta_d, vOfAbsAlpha(options.min_abs_alpha)).chordAngle(),
+          evalStandard(theta_d, vOfAbsAlpha(options.max_abs_alpha)).chordAngle()};
 }
 
 SegmentSolve solveInflectionSegment(const Vec2& q0, const Vec2& q1, const Vec2& q2, InflectionEnd end,

@@ -10,6 +10,7 @@
 // a circle) to 0 (q -> inf, alpha -> 0-). Given the control triangle, the extra
 // condition kappa = 0 at one end leaves alpha as the unknown: a safeguarded Newton on
 // v = 1/q (bisection whenever Newton would leave the bracket) fits the chord angle.
+// The integral has a power series in theta_d (see the .cpp), so no quadrature is needed.
 // An inflection at the end is the reversed problem.
 
 #include "core/segment_solve.h"
@@ -24,7 +25,6 @@ struct InflectionOptions {
   /// Search range of alpha: alpha in [-max_abs_alpha, -min_abs_alpha].
   double min_abs_alpha = 1e-3;
   double max_abs_alpha = 1e6;
-  double relative_tolerance = 1e-13;  // of the quadrature, relative to |E|
 };
 
 /// The LA segment through Q0, Q2 with end tangents along Q1-Q0, Q2-Q1 and zero

@@ -87,14 +87,28 @@ LaSegment::LaSegment(double alpha, double length, Vec2 start, double theta0,
   if (a0 > 0.0) {
     kappa_ref_ = a0;
     v0_ = 1.0;
-    const double v1 = (a1 == 0.0) ? 0.0 : std::exp(alpha * std::log(a0 / a1));
-    if (!std::isfinite(v1)) fail("alpha too large for this curvature ratio (rho^alpha overflows)");
-    dv_ = (v1 - 1.0) / length;
+    v1_ = (a1 == 0.0) ? 0.0 : std::exp(alpha * std::log(a0 / a1));
+    if (!std::isfinite(v1_)) fail("alpha too large for this curvature ratio (rho^alpha overflows)");
+    dv_ = (v1_ - 1.0) / length;
   } else {
     kappa_ref_ = a1;
     v0_ = 0.0;
+    v1_ = 1.0;
     dv_ = 1.0 / length;
   }
+}
+
+double LaSegment::v(double s) const {
+  const double u = s / length_;
+  if (v0_ == 0.0) return u;
+  // Written from the end that keeps the digits: near v1 << 1 the start form 1 + (v1-1)u
+  // would round v1 away at u = 1.
+  return v1_ >= 0.5 ? 1.0 + (v1_ - 1.0) * u : (1.0 - u) + v1_ * u;
+}
+
+double LaSegment::logV(double s) const {
+  if (v0_ == 1.0 && v1_ >= 0.5) return std::log1p((v1_ - 1.0) * (s / length_));
+  return std::log(v(s));
 }
 
 LaSegment LaSegment::arc(double length, Vec2 start, double theta0, double kappa) {
@@ -108,8 +122,7 @@ double LaSegment::kappa(double s) const {
     case Law::kExponential:
       return sign_ * kappa_ref_ * std::exp(-growth_ * s);
     case Law::kPower:
-      if (v0_ == 1.0) return sign_ * kappa_ref_ * std::exp(-std::log1p(dv_ * s) / alpha_);
-      return sign_ * kappa_ref_ * std::pow(std::max(dv_ * s, 0.0), -1.0 / alpha_);
+      return sign_ * kappa_ref_ * std::exp(-logV(s) / alpha_);
   }
   return 0.0;
 }
@@ -120,10 +133,8 @@ double LaSegment::dkappa(double s) const {
       return 0.0;
     case Law::kExponential:
       return -growth_ * kappa(s);
-    case Law::kPower: {
-      const double v = std::max(v0_ + dv_ * s, 0.0);
-      return sign_ * kappa_ref_ * (-1.0 / alpha_) * std::pow(v, -1.0 / alpha_ - 1.0) * dv_;
-    }
+    case Law::kPower:
+      return sign_ * kappa_ref_ * (-1.0 / alpha_) * std::pow(std::max(v(s), 0.0), -1.0 / alpha_ - 1.0) * dv_;
   }
   return 0.0;
 }
@@ -135,10 +146,10 @@ double LaSegment::unitTurning(double s) const {
     case Law::kExponential:
       return -std::expm1(-growth_ * s) / growth_;
     case Law::kPower:
-      if (v0_ == 0.0) return std::pow(dv_ * s, exponent_) / (exponent_ * dv_);
-      // integral of (1 + dv t)^(-1/alpha) dt, written to stay exact as dv -> 0
+      if (v0_ == 0.0) return std::pow(v(s), exponent_) / (exponent_ * dv_);
+      // integral of v(t)^(-1/alpha) dt with v(0) = 1, written to stay exact as dv -> 0
       {
-        const double y = std::log1p(dv_ * s);
+        const double y = logV(s);
         return exponent_ == 0.0 ? y / dv_ : std::expm1(exponent_ * y) / (exponent_ * dv_);
       }
   }
@@ -176,9 +187,9 @@ bool LaSegment::panelBySeries(double s0, double h, double theta_start, double th
   //   exponential law: x = g tau,          G = (1 - e^-x)/x,       g_k = -g_{k-1}/(k+1)
   double x_end = 0.0, ratio_bound = 0.0;
   if (law_ == Law::kPower) {
-    const double v = v0_ + dv_ * s0;
-    if (!(v > 0.0)) return false;
-    x_end = dv_ * h / v;
+    const double v_start = v(s0);
+    if (!(v_start > 0.0)) return false;
+    x_end = dv_ * h / v_start;
     ratio_bound = std::abs(x_end) * std::max(1.0, std::abs(exponent_));
   } else if (law_ == Law::kExponential) {
     x_end = growth_ * h;

@@ -84,6 +84,9 @@ class LaSegment {
 
   // Integral of |kappa| / kappa_ref from 0 to s, i.e. the turning per unit kappa_ref.
   double unitTurning(double s) const;
+  // The power law's v(s) = (rho(s)/rho_ref)^alpha, linear in s, and its logarithm.
+  double v(double s) const;
+  double logV(double s) const;
   Vec2 integratePositionAdaptive(double s0, double s1, double abs_tol) const;
   // One panel of the sampler; returns false where the series is not accurate enough.
   bool panelBySeries(double s0, double h, double theta_start, double theta_end,
@@ -93,13 +96,13 @@ class LaSegment {
   Vec2 start_;
   double theta0_, kappa_start_, kappa_end_;
 
-  // Precomputed law. kPower: |kappa| = kappa_ref * v(s)^(-1/alpha), v(s) = v0 + dv*s,
+  // Precomputed law. kPower: |kappa| = kappa_ref * v(s)^(-1/alpha), v linear from v0 to v1,
   // v = (rho/rho_ref)^alpha, reference end the start (v0 = 1) unless kappa_start = 0
   // (v0 = 0, reference the end). kExponential: |kappa| = kappa_ref * exp(-g*s).
   Law law_ = Law::kConstant;
   double sign_ = 0.0;
   double kappa_ref_ = 0.0;
-  double v0_ = 1.0, dv_ = 0.0;
+  double v0_ = 1.0, v1_ = 1.0, dv_ = 0.0;  // v at s = 0 and s = L, slope
   double exponent_ = 0.0;  // e = 1 - 1/alpha, power of v in the turning integral
   double growth_ = 0.0;    // g of the exponential law
 };

@@ -94,9 +94,10 @@ double quadratureNorm(const V& v) {
 /// Adaptive Gauss-Legendre on [a, b] to an absolute tolerance: each panel is accepted
 /// when the 10-point rule on it and on its two halves agree within tol * panel/(b-a).
 /// The result is the finer estimate. max_depth bounds the bisection (2^-60 of the
-/// interval is below double resolution anyway).
+/// interval is below double resolution anyway) and max_panels the total work, for a
+/// tolerance below the rounding noise; hitting either clears `converged`.
 template <class F>
-auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth = 60) {
+auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth = 60, int max_panels = 20000) {
   using V = decltype(integrateFixed<10>(f, a, b));
   QuadratureResult<V> result;
   const V first = integrateFixed<10>(f, a, b);
@@ -120,7 +121,7 @@ auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth 
     const V fine = left + right;
     const double err = quadratureNorm(V(fine - p.whole));
     const double allowed = abs_tol * (p.hi - p.lo) / total;
-    if (err <= allowed || p.depth >= max_depth) {
+    if (err <= allowed || p.depth >= max_depth || result.panels + static_cast<int>(stack.size()) >= max_panels) {
       if (err > allowed) result.converged = false;
       result.value += fine;
       result.error_estimate += err;

@@ -22,9 +22,43 @@ constexpr double kLcgTrim = 0.1;
 constexpr double kDefaultAlpha = -1.0;
 constexpr double kWidestAlpha = 0.5;
 constexpr int kAlphaBisections = 12;
-constexpr int kMaxRepairPasses = 3;
+// Passes that split pieces which fail (no LA segment) or stray from the points.
+constexpr int kMaxRefinePasses = 8;
+// Points on an integer grid (pixels) are off the true stroke by up to sqrt(2)/2 of a
+// unit; no curve can be closer to all of them than about this, so the tolerance is
+// not set below it.
+constexpr double kQuantizationFloor = 0.75;
+
+// The noise floor of the tolerance is this many standard deviations of the points'
+// estimated noise: a 2D Gaussian exceeds 4 sigma with probability e^-8 ~ 3e-4.
+constexpr double kNoiseSigmas = 4.0;
 
 using Clock = std::chrono::steady_clock;
+
+// The smallest tolerance the points allow: their noise level and, for points on an
+// integer grid (pixels), the quantization. The noise is estimated robustly from the
+// fourth differences p[i-2] - 4p[i-1] + 6p[i] - 4p[i+1] + p[i+2] across the stroke
+// (along the normal of the chord p[i-2]p[i+2], so uneven spacing along the stroke does
+// not count): they cancel any cubic, i.e. the curve's own bending, and for independent
+// noise sigma have standard deviation sigma sqrt(70); the median ignores corners.
+double noiseFloor(const std::vector<Vec2>& p) {
+  if (p.size() < 7) return 0.0;
+  std::vector<double> d;
+  for (std::size_t i = 2; i + 2 < p.size(); ++i) {
+    const Vec2 chord = p[i + 2] - p[i - 2];
+    const double len = chord.norm();
+    if (!(len > 0.0)) continue;
+    const Vec2 normal(-chord.y() / len, chord.x() / len);
+    d.push_back(std::abs(normal.dot(p[i - 2] - 4.0 * p[i - 1] + 6.0 * p[i] - 4.0 * p[i + 1] + p[i + 2])));
+  }
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  const double sigma = d[d.size() / 2] / 0.6745 / std::sqrt(70.0);  // median of |N(0,s)| = 0.6745 s
+  const bool on_grid = std::all_of(p.begin(), p.end(), [](const Vec2& q) {
+    return q.x() == std::round(q.x()) && q.y() == std::round(q.y());
+  });
+  return std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor : 0.0);
+}
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct Part {
@@ -100,6 +134,34 @@ double nearestFeasibleAlpha(double wanted, const Vec2& q0, const Vec2& q1, const
     (ok(mid) ? good : bad) = mid;
   }
   return good;
+}
+
+// Largest distance from the points of each piece (by their spline parameter) to its LA
+// segment; with no segments, to the spline itself (the smoothing's own error there).
+std::vector<double> pieceDeviations(const std::vector<LaSegment>& segments, const std::vector<PieceReport>& pieces,
+                                    const std::vector<Vec2>& points, const SmoothingResult& smooth, double diag,
+                                    double period) {
+  std::vector<double> out(pieces.size(), 0.0);
+  std::vector<std::vector<Vec2>> members(pieces.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    double t = smooth.parameters[k];
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const double tt = (t < pieces[i].t0 && smooth.spline.isPeriodic()) ? t + period : t;
+      if (tt >= pieces[i].t0 && tt <= pieces[i].t1) {
+        if (segments.empty()) out[i] = std::max(out[i], (smooth.spline.point(t) - points[k]).norm());
+        else members[i].push_back(points[k]);
+        break;
+      }
+    }
+  }
+  if (segments.empty()) return out;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    if (members[i].empty()) continue;
+    Curve one;
+    one.pieces.push_back({segments[i], false});
+    for (double d : distancesToCurve(one, members[i], diag)) out[i] = std::max(out[i], d);
+  }
+  return out;
 }
 
 struct PartFit {
@@ -210,13 +272,23 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
     g2.diagonal = diag;
     G2Result res = makeG2(chain, g2);
     timings.g2_ms += msSince(t0);
-    if (res.segments.empty() && pass < kMaxRepairPasses) {
-      // Some piece has no LA segment (its tangents do not form a convex triangle, or no
-      // alpha reaches it): halve every piece that fails and try again.
+    // Pieces to halve: those with no LA segment (tangents not forming a convex
+    // triangle, or no alpha reaching it), else those whose segment strays from the
+    // points further than the tolerance (or the spline's own error there).
+    std::vector<bool> halve(n, false);
+    bool any = false;
+    if (res.segments.empty()) {
+      for (std::size_t i = 0; i < n; ++i) any |= halve[i] = !solvePiece(chain, i).report.usable();
+    } else {
+      const std::vector<double> dev = pieceDeviations(res.segments, reports, part.points, smooth, diag, period);
+      const std::vector<double> own = pieceDeviations({}, reports, part.points, smooth, diag, period);
+      for (std::size_t i = 0; i < n; ++i) any |= halve[i] = dev[i] > std::max(tol, 1.05 * own[i]);
+    }
+    if (any && pass < kMaxRefinePasses) {
       std::vector<SplitPoint> splits;
       for (std::size_t i = 0; i < n; ++i) {
         splits.push_back(seg.splits[i]);
-        if (!solvePiece(chain, i).report.usable()) {
+        if (halve[i]) {
           const double tm = spline.wrap(0.5 * (reports[i].t0 + reports[i].t1));
           splits.push_back({tm, SplitKind::kTurning, spline.curvature(tm)});
         }
@@ -225,6 +297,7 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
       seg.splits = std::move(splits);
       continue;
     }
+    if (any && !res.segments.empty()) warnings.push_back("some segments stay further than the tolerance from the points");
     out.g2 = res.report;
     if (res.segments.empty()) {
       warnings.push_back("no LA segments for this part: " + res.report.message);
@@ -250,6 +323,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
   r.tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
+  const double floor = noiseFloor(r.cleaned.points);
+  if (r.tolerance < floor) {
+    r.warnings.push_back("tolerance raised from " + std::to_string(r.tolerance) + " to " + std::to_string(floor) +
+                         ": the points are noisier than that (no curve comes closer to all of them)");
+    r.tolerance = floor;
+  }
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
 

@@ -8,10 +8,10 @@
 namespace la {
 namespace {
 
-// Samples per unit of diagonal: the polyline's sagitta kappa h^2 / 8 is then below
-// 1e-6 of the diagonal for |kappa| up to ~100 / diagonal.
-constexpr double kSamplesPerDiagonal = 2000.0;
-constexpr int kSearchWindow = 48;  // polyline edges either side of the previous foot
+// The polyline's chords are kept short enough that their sagitta kappa h^2 / 8 stays
+// below this fraction of the diagonal (1e-6: far below any tolerance a user sets).
+constexpr double kSagittaFraction = 1e-6;
+constexpr int kSearchWindow = 24;  // polyline edges either side of the previous foot, to start with
 
 double pointToEdge(const Vec2& p, const Vec2& a, const Vec2& b) {
   const Vec2 ab = b - a;
@@ -34,10 +34,14 @@ double bboxDiagonal(const std::vector<Vec2>& points) {
 
 std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal) {
   std::vector<Vec2> poly;
+  CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
-    const int n = std::clamp(static_cast<int>(std::ceil(piece.segment.length() / diagonal * kSamplesPerDiagonal)), 8, 200000);
-    CurveSamples smp;
-    piece.segment.sample(n, smp);
+    const LaSegment& seg = piece.segment;
+    const double kmax = std::max(std::abs(seg.kappaStart()), std::abs(seg.kappaEnd()));
+    const double h = std::sqrt(8.0 * kSagittaFraction * diagonal / std::max(kmax, 1e-300));
+    const int n = std::clamp(static_cast<int>(std::ceil(seg.length() / h)) + 1, 8, 100000);
+    smp.clear();
+    seg.sample(n, smp);
     poly.insert(poly.end(), smp.point.begin(), smp.point.end());
   }
   std::vector<double> out(points.size(), INFINITY);
@@ -46,27 +50,37 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     return out;
   }
   const int edges = static_cast<int>(poly.size()) - 1;
+  auto nearest = [&](const Vec2& p, int lo, int hi, double& best, int& best_e) {
+    for (int e = std::max(0, lo); e <= std::min(edges - 1, hi); ++e) {
+      const double d = pointToEdge(p, poly[e], poly[e + 1]);
+      if (d < best) best = d, best_e = e;
+    }
+  };
+  // Points and curve run in the same order, so each foot is searched near the last
+  // one, the window growing while the best edge sits on its border. The first point
+  // (and a closed curve's seam) gets the whole curve.
   int foot = -1;
-  double prev = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
     double best = INFINITY;
     int best_e = -1;
-    if (foot >= 0) {
-      for (int e = std::max(0, foot - kSearchWindow); e <= std::min(edges - 1, foot + kSearchWindow); ++e) {
-        const double d = pointToEdge(points[i], poly[e], poly[e + 1]);
-        if (d < best) best = d, best_e = e;
-      }
-    }
-    // a jump of the foot (first point, or far from the window) gets the global search
-    if (best_e < 0 || best > 2.0 * prev + 1e-3 * diagonal) {
-      for (int e = 0; e < edges; ++e) {
-        const double d = pointToEdge(points[i], poly[e], poly[e + 1]);
-        if (d < best) best = d, best_e = e;
+    if (foot < 0 || curve.closed) {
+      nearest(points[i], 0, edges - 1, best, best_e);
+    } else {
+      int lo = foot - kSearchWindow, hi = foot + kSearchWindow;
+      nearest(points[i], lo, hi, best, best_e);
+      while ((best_e == std::max(0, lo) && lo > 0) || (best_e == std::min(edges - 1, hi) && hi < edges - 1)) {
+        const int width = hi - lo;
+        if (best_e <= lo) {
+          nearest(points[i], lo - width, lo - 1, best, best_e);
+          lo -= width;
+        } else {
+          nearest(points[i], hi + 1, hi + width, best, best_e);
+          hi += width;
+        }
       }
     }
     out[i] = best;
     foot = best_e;
-    prev = best;
   }
   return out;
 }

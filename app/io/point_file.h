@@ -1,13 +1,24 @@
 #pragma once
 // Readers of the stroke and profile files lafit and the GUI import (DESIGN.md section 5):
 //  - CSV / TXT: one point per line `x,y[,t[,pressure]]` (commas, spaces, tabs or
-//    semicolons), `#` comments and one header line allowed, a blank line between strokes;
-//  - airfoil `.dat` (Selig): a name line, then `x y` lines; one profile;
+//    semicolons), `#` comments and one header line allowed (known names x, y, t/time,
+//    p/pressure pick the columns; any other header is skipped and columns stay
+//    positional), a blank line between strokes; Omniglot's START / BREAK lines are
+//    understood. NaN or infinite values are errors;
+//  - airfoil `.dat` (Selig): a name line, then `x y` lines; one profile (blank lines
+//    ignored; Lednicer files are refused with a message saying so);
 //  - the project's stroke JSON: {"strokes": [{"points": [[x, y], ...], "t": [...],
-//    "pressure": [...]}, ...]} (t and pressure optional);
+//    "pressure": [...]}, ...]} (t and pressure optional, one entry per point, null for
+//    unknown);
 //  - SVG: <path> (M/L/H/V/C/S/Q/T/A/Z, absolute and relative) and <polyline>/<polygon>
-//    elements, flattened to points; each subpath is a stroke.
-// Malformed input throws PointFileError naming the file, the line and what is wrong.
+//    elements, flattened to points on the exact curves at most 0.5% of the element's
+//    bounding-box diagonal apart; each subpath is a stroke. A closed subpath (Z,
+//    <polygon>) does not repeat its start point. Transforms, viewBox and units are
+//    ignored (coordinates as written), as are other shapes and anything in <defs>.
+// Malformed input throws PointFileError naming the file, the line and what is wrong:
+// "<file>:<line>: <what>" ("<file>:<line>:<column>: ..." for JSON syntax, "<file>: ..."
+// for JSON schema errors, which name the stroke and key, and for "no points").
+// Details of each format are at the top of point_file.cpp.
 
 #include <filesystem>
 #include <stdexcept>
@@ -22,8 +33,9 @@ struct PointFileError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Reads every stroke of the file; the format is chosen by extension (.csv .txt .dat
-/// .json .svg; anything else is read as CSV/TXT).
+/// Reads every stroke of the file; the format is chosen by extension, ignoring case
+/// (.csv .txt .dat .json .svg; anything else is read as CSV/TXT). Strokes come in file
+/// order; a missing or unreadable file throws "cannot open <path>: <reason>".
 std::vector<Stroke> readStrokes(const std::filesystem::path& path);
 
 /// The same from text already in memory; `name` is used in messages and its extension

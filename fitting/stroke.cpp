@@ -1,0 +1,573 @@
+// Stroke clean-up (DESIGN.md section 3, stage 1).
+//
+// Everything here works on chords over arc-length windows rather than on single
+// steps: tablet and mouse data are quantized to whole pixels, so the direction of one
+// 2-px step is only known to within 45 degrees, while the chord over a window of a few
+// steps is good to a few degrees.
+//
+// The turn at point i over window w:
+//     a = the point at least w of arc (and at least m samples) before i,
+//     b = the point at least w of arc (and at least m samples) after i,
+//     turn_w(i) = |angle between P_i - P_a and P_b - P_i|.
+// On a circular arc of radius rho, turn_w = w / rho (the chords' directions are the
+// tangents at s - w/2 and s + w/2), so halving the window halves the turn; at a corner
+// between straight legs halving the window keeps the turn. A point is sharp when
+// turn_{w/2} >= kSharpRatio * turn_w. Corners (turn_w > corner_min_angle, sharp) and
+// hooks (an end piece meeting the rest at a sharp turn) both use this test, which is
+// what keeps a small loop, a question mark's top or the curl at the end of a brace
+// from being taken for a corner or a hook.
+
+#include "fitting/stroke.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <sstream>
+#include <string>
+#ifdef LAFAIR_STROKE_DEBUG
+#include <cstdio>
+#endif
+
+namespace la {
+namespace {
+
+/// Two finite points closer than this fraction of the bounding-box diagonal are one.
+constexpr double kDuplicateTolerance = 1e-9;
+/// Points within this fraction of the diagonal of their best line are collinear.
+constexpr double kCollinearTolerance = 1e-9;
+/// The outlier test needs a median step it can trust: at least this many points.
+constexpr std::size_t kMinPointsForOutlierTest = 6;
+/// At most this many leading points are dropped as outliers. The MMG data have one
+/// outlier per stroke, but in `arrowhead` the pen lands, jumps 12 px back and 13 px
+/// forward again before drawing (two jumps).
+constexpr std::size_t kMaxOutlierPoints = 2;
+/// Hook trimming keeps at least this fraction of the drawn length (the brief: ~70%).
+constexpr double kMinKeptFraction = 0.7;
+/// The overlap of a closed stroke is searched in this last fraction of its length only:
+/// longer overlaps are not overshoots but strokes that pass their start and go on (a
+/// "9" drawn from the crossing), and the first points are always near the start.
+constexpr double kMaxOverlapFraction = 0.25;
+/// A tail crossing the start's normal line forwards closes the stroke if it passes within
+/// this many close distances of the start. The slow $1 circle #0 overshoots its start
+/// 7.3% of the diagonal outside it (close_fraction is 6%); open gestures never cross
+/// their start line near the start.
+constexpr double kCrossReach = 2.0;
+/// A seam is smooth if the closing step turns by at most this fraction of
+/// corner_min_angle at either end. At one half, cutting a real corner diagonally (its
+/// turn split between the two ends of the closing step) never looks smooth.
+constexpr double kSeamSmoothFraction = 0.5;
+/// A closed stroke's first points within this many median steps of its last point are
+/// dropped (they repeat it, and a very short closing step is noise).
+constexpr double kSeamMergeSteps = 0.5;
+/// Sharpness: over half the window a corner keeps at least this fraction of its turn.
+/// A circular arc keeps 0.5, a corner between straight legs 1.0; hand-drawn corners are
+/// rounded over a few pixels and noisy, and in the $1 rectangle / star / caret / v
+/// strokes their ratios are >= 0.8.
+#ifndef LAFAIR_SHARP
+constexpr double kSharpRatio = 0.7;
+#else
+constexpr double kSharpRatio = LAFAIR_SHARP;
+#endif
+/// A hook is nearly straight: no point of it is farther than this fraction of its chord
+/// from the chord (a circular arc turning 90 degrees has 0.21, one turning 60 degrees 0.13).
+constexpr double kHookStraightness = 0.15;
+/// A hook's chord is at least this many noise levels long (about 2 px on pixel-quantized
+/// input); anything shorter is within the sampling noise and harmless to the fit.
+constexpr double kHookMinNoise = 6.0;
+/// Windows are at least this many noise levels long: over such a chord, noise moves
+/// the direction by about 1/8 rad.
+constexpr double kWindowNoise = 8.0;
+
+double boxDiagonal(const std::vector<Vec2>& p) {
+  if (p.empty()) return 0.0;
+  Vec2 lo = p.front(), hi = p.front();
+  for (const Vec2& q : p) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  return (hi - lo).norm();
+}
+
+std::vector<double> arcLengths(const std::vector<Vec2>& p) {
+  std::vector<double> s(p.size(), 0.0);
+  for (std::size_t i = 1; i < p.size(); ++i) s[i] = s[i - 1] + (p[i] - p[i - 1]).norm();
+  return s;
+}
+
+double medianStep(const std::vector<Vec2>& p) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < p.size(); ++i) steps.push_back((p[i] - p[i - 1]).norm());
+  if (steps.empty()) return 0.0;
+  auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
+  std::nth_element(steps.begin(), mid, steps.end());
+  return *mid;
+}
+
+double unsignedAngle(const Vec2& a, const Vec2& b) { return std::abs(signedAngle(a, b)); }
+
+/// Distance from q to the segment [a, b].
+double segmentDistance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double d2 = d.squaredNorm();
+  const double u = d2 > 0.0 ? std::clamp((q - a).dot(d) / d2, 0.0, 1.0) : 0.0;
+  return (q - (a + u * d)).norm();
+}
+
+/// Distance from q to the line through a and b (to a if they coincide).
+double lineDistance(const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  return len > 0.0 ? std::abs(cross(d, q - a)) / len : (q - a).norm();
+}
+
+/// The cleaned points with the raw index of each.
+struct Points {
+  std::vector<Vec2> p;
+  std::vector<std::size_t> src;
+
+  std::size_t size() const { return p.size(); }
+  void dropFront(std::size_t k) {
+    p.erase(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(k));
+    src.erase(src.begin(), src.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+  void keepFront(std::size_t k) {
+    p.resize(k);
+    src.resize(k);
+  }
+};
+
+/// Length scales of a stroke, measured once after the outlier test.
+struct Scales {
+  double median_step = 0.0;
+  /// Typical distance of a point from the chord of its two neighbours: the sampling
+  /// noise (about 0.3 px for pixel-quantized input), or the sagitta of one step on a
+  /// smooth curve.
+  double noise = 0.0;
+  /// The corner window: corner_window of the length, but at least kWindowNoise noise
+  /// levels, so that a window's chord direction is good to a few degrees.
+  double window = 0.0;
+};
+
+Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptions& options) {
+  Scales scales;
+  scales.median_step = medianStep(p);
+  std::vector<double> deviations;
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) deviations.push_back(lineDistance(p[i], p[i - 1], p[i + 1]));
+  if (!deviations.empty()) {
+    auto mid = deviations.begin() + static_cast<std::ptrdiff_t>(deviations.size() / 2);
+    std::nth_element(deviations.begin(), mid, deviations.end());
+    scales.noise = *mid;
+  }
+  double length = arcLengths(p).back();
+  if (closed && p.size() > 1) length += (p.front() - p.back()).norm();
+  scales.window = std::max(options.corner_window * length, kWindowNoise * scales.noise);
+  return scales;
+}
+
+/// A polyline seen through arc-length windows; indices wrap around when closed.
+class Polyline {
+ public:
+  Polyline(const std::vector<Vec2>& p, bool closed) : m_p(p), m_closed(closed) {
+    m_n = static_cast<std::ptrdiff_t>(p.size());
+    m_s = arcLengths(p);
+    m_length = m_s.empty() ? 0.0 : m_s.back();
+    if (closed && m_n > 1) m_length += (p.front() - p.back()).norm();
+  }
+
+  double length() const { return m_length; }
+  std::ptrdiff_t size() const { return m_n; }
+  std::ptrdiff_t wrap(std::ptrdiff_t i) const { return m_closed ? ((i % m_n) + m_n) % m_n : i; }
+  const Vec2& at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(wrap(i))]; }
+  double step(std::ptrdiff_t i) const { return (at(i + 1) - at(i)).norm(); }
+
+  /// Arc length from i to j along the curve (the shorter way round when closed).
+  double distance(std::ptrdiff_t i, std::ptrdiff_t j) const {
+    const double d = std::abs(m_s[static_cast<std::size_t>(wrap(i))] - m_s[static_cast<std::size_t>(wrap(j))]);
+    return m_closed ? std::min(d, m_length - d) : d;
+  }
+
+  /// Walks from i in direction dir (+1 / -1) until at least `length` of arc and
+  /// `min_steps` steps are covered. An open polyline stops at its end, a closed one after
+  /// half a loop; nullopt if fewer than min_steps steps were possible, or (`whole`) if
+  /// the open end came before `length`. The result is not wrapped (on a closed polyline
+  /// it may be negative or >= size()).
+  std::optional<std::ptrdiff_t> walk(std::ptrdiff_t i, int dir, double length, int min_steps,
+                                     bool whole = false) const {
+    const std::ptrdiff_t max_steps = m_closed ? (m_n - 1) / 2 : m_n;
+    std::ptrdiff_t j = i;
+    double covered = 0.0;
+    int steps = 0;
+    while (steps < max_steps) {
+      const std::ptrdiff_t next = j + dir;
+      if (!m_closed && (next < 0 || next >= m_n)) break;
+      covered += dir > 0 ? step(j) : step(next);
+      j = next;
+      ++steps;
+      if (covered >= length && steps >= min_steps) return j;
+    }
+    if (steps < min_steps || (whole && !m_closed)) return std::nullopt;
+    return j;
+  }
+
+  /// turn_w(i) of the file comment, with the window ends.
+  struct Turn {
+    double angle = 0.0;
+    std::ptrdiff_t a = 0, b = 0;
+  };
+  std::optional<Turn> turn(std::ptrdiff_t i, double w, int min_steps, bool whole = false) const {
+    const auto a = walk(i, -1, w, min_steps, whole);
+    const auto b = walk(i, +1, w, min_steps, whole);
+    if (!a || !b) return std::nullopt;
+    return Turn{unsignedAngle(at(i) - at(*a), at(*b) - at(i)), *a, *b};
+  }
+
+ private:
+  const std::vector<Vec2>& m_p;
+  bool m_closed = false;
+  std::ptrdiff_t m_n = 0;
+  std::vector<double> m_s;
+  double m_length = 0.0;
+};
+
+/// Deliberate corners: turn over the window above corner_min_angle, sharp, then
+/// non-maximum suppression (strongest first, nothing within one window of an accepted
+/// corner) and each placed on the point farthest from the chord across its window.
+std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, double w,
+                                     const CleanupOptions& options) {
+  const Polyline line(p, closed);
+  const std::ptrdiff_t n = line.size();
+  constexpr int kMinSideSamples = 2;  // the brief: at least 2 samples a side
+
+  struct Candidate {
+    std::ptrdiff_t i;
+    Polyline::Turn turn;
+  };
+  std::vector<Candidate> candidates;
+  const std::ptrdiff_t first = closed ? 0 : kMinSideSamples;
+  const std::ptrdiff_t last = closed ? n - 1 : n - 1 - kMinSideSamples;
+  for (std::ptrdiff_t i = first; i <= last; ++i) {
+    const auto full = line.turn(i, w, kMinSideSamples, true);
+    if (!full || full->angle <= options.corner_min_angle) continue;
+    const auto half = line.turn(i, 0.5 * w, 1, true);
+#ifdef LAFAIR_STROKE_DEBUG
+    if (half) std::fprintf(stderr, "    cand i=%td full=%.0f half=%.0f ratio=%.2f%s\n", i, full->angle * 57.3, half->angle * 57.3, half->angle / full->angle, half->angle < kSharpRatio * full->angle ? " (round)" : "");
+#endif
+    if (!half || half->angle < kSharpRatio * full->angle) continue;
+    candidates.push_back({i, *full});
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& x, const Candidate& y) { return x.turn.angle > y.turn.angle; });
+
+  std::vector<std::ptrdiff_t> accepted;
+  for (const Candidate& c : candidates) {
+    // The vertex: the point of the window farthest from the chord P_a P_b.
+    std::ptrdiff_t vertex = c.i;
+    double farthest = -1.0;
+    for (std::ptrdiff_t j = c.turn.a + 1; j < c.turn.b; ++j) {
+      const double d = lineDistance(line.at(j), line.at(c.turn.a), line.at(c.turn.b));
+      if (d > farthest) {
+        farthest = d;
+        vertex = line.wrap(j);
+      }
+    }
+    if (!closed && (vertex < kMinSideSamples || vertex > n - 1 - kMinSideSamples)) vertex = c.i;
+    const bool suppressed = std::any_of(accepted.begin(), accepted.end(), [&](std::ptrdiff_t v) {
+      return v == vertex || line.distance(v, vertex) < w || line.distance(v, c.i) < w;
+    });
+    if (!suppressed) accepted.push_back(vertex);
+  }
+  std::vector<std::size_t> corners(accepted.begin(), accepted.end());
+  std::sort(corners.begin(), corners.end());
+  return corners;
+}
+
+/// Length budget shared by the two hooks.
+struct HookLimits {
+  double max_length = 0.0;      // arc length the cut may remove
+  std::size_t max_points = 0;   // points the cut may remove
+};
+
+/// Number of leading points of p that form a hook (0 if none). A candidate junction k
+/// is accepted when
+///  - the piece P_0..P_k is short (hook_max_fraction of the drawn length, and within
+///    the limits), nearly straight, and longer than kHookMinNoise noise levels;
+///  - its chord P_0 P_k turns by more than hook_min_angle against the chord from P_k
+///    over the next window w;
+///  - the turn at P_k is sharp (the corner test, with the hook side of the window cut
+///    short at P_0).
+/// Of several candidates the one with the largest turn is the junction.
+std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Scales& scales,
+                      const HookLimits& limits, const CleanupOptions& options) {
+  const Polyline line(p, false);
+  const std::vector<double> s = arcLengths(p);
+  const double max_length = std::min(options.hook_max_fraction * drawn_length, limits.max_length);
+  const double w = scales.window;
+  std::size_t best = 0;
+  double best_turn = options.hook_min_angle;
+  for (std::size_t k = 1; k <= limits.max_points && k < p.size() && s[k] <= max_length; ++k) {
+    const Vec2 chord = p[k] - p[0];
+    const double chord_length = chord.norm();
+    double deviation = 0.0;
+    for (std::size_t j = 1; j < k; ++j) deviation = std::max(deviation, lineDistance(p[j], p[0], p[k]));
+#ifdef LAFAIR_STROKE_DEBUG
+    std::fprintf(stderr, "    hook? k=%zu chord=%.1f (min %.1f) dev=%.2f\n", k, chord_length, kHookMinNoise * scales.noise, deviation / chord_length);
+#endif
+    if (chord_length < kHookMinNoise * scales.noise) continue;
+    if (deviation > kHookStraightness * chord_length) continue;
+    const auto ki = static_cast<std::ptrdiff_t>(k);
+    const auto b = line.walk(ki, +1, w, 2);
+    if (!b) continue;
+    const double turn = unsignedAngle(chord, line.at(*b) - p[k]);
+    if (turn <= best_turn) continue;
+    const auto full = line.turn(ki, w, 1);
+    const auto half = line.turn(ki, 0.5 * w, 1);
+    if (!full || !half) continue;
+#ifdef LAFAIR_STROKE_DEBUG
+    std::fprintf(stderr, "    hook k=%zu s=%.1f turn=%.0f full=%.0f half=%.0f\n", k, s[k], turn * 57.3, full->angle * 57.3, half->angle * 57.3);
+#endif
+    if (half->angle < kSharpRatio * full->angle) continue;
+    best = k;
+    best_turn = turn;
+  }
+  return best;
+}
+
+/// Where a closed stroke is cut: points [first, end) are kept.
+struct Seam {
+  std::size_t first = 0;
+  std::size_t end = 0;
+};
+
+/// Closure of an open point sequence, nullopt if it is open. With `reach` =
+/// close_fraction * diagonal, the stroke is closed when, in its last
+/// kMaxOverlapFraction of length,
+///  - overlap: a segment passes within reach of the start; everything after the point
+///    of that part nearest the start is cut;
+///  - crossing: it crosses the line through the start normal to the start direction,
+///    forwards, within kCrossReach * reach of the start (a circle drawn past its start
+///    a little outside it); everything after the crossing is cut;
+///  - gap: the end stops within reach of the start.
+/// Then the seam: leading points within half a median step of the new end are dropped
+/// (they repeat it). If the closing step then meets the stroke at a kink, the pair of
+/// points (one in the last, one in the first kMaxOverlapFraction of the length, at most
+/// kCrossReach * reach apart) with the smoothest closing step is the seam instead, if it
+/// is smooth; otherwise the kink is a real corner and stays.
+std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, const CleanupOptions& options) {
+  const std::size_t n = p.size();
+  if (n < 4) return std::nullopt;
+  const Polyline line(p, false);
+  const std::vector<double> s = arcLengths(p);
+  const double length = s.back();
+  const double reach = options.close_fraction * boxDiagonal(p);
+  const double tail_start = (1.0 - kMaxOverlapFraction) * length;
+
+  double nearest_segment = std::numeric_limits<double>::infinity();
+  std::size_t nearest_point = n - 1;
+  for (std::size_t j = 1; j < n; ++j) {
+    if (s[j - 1] < tail_start) continue;
+    nearest_segment = std::min(nearest_segment, segmentDistance(p[0], p[j - 1], p[j]));
+    if ((p[j] - p[0]).norm() < (p[nearest_point] - p[0]).norm()) nearest_point = j;
+  }
+  std::optional<std::size_t> last;
+  if (nearest_segment <= reach) last = nearest_point;
+  if (!last) {
+    const auto ahead = line.walk(0, +1, scales.window, 2);
+    const Vec2 d0 = ahead ? (line.at(*ahead) - p[0]).normalized() : Vec2::Zero();
+    for (std::size_t j = 1; j < n && !last; ++j) {
+      if (s[j - 1] < tail_start) continue;
+      const double u0 = (p[j - 1] - p[0]).dot(d0), u1 = (p[j] - p[0]).dot(d0);
+      if (!(u0 < 0.0 && u1 >= 0.0)) continue;
+      const Vec2 crossing = p[j - 1] + (u0 / (u0 - u1)) * (p[j] - p[j - 1]);
+      if (std::abs(cross(d0, crossing - p[0])) <= kCrossReach * reach) last = j - 1;
+    }
+  }
+  if (!last && (p[n - 1] - p[0]).norm() <= reach) last = n - 1;
+  if (!last) return std::nullopt;
+
+  // The seam. Leading points that repeat the new end are dropped.
+  const std::size_t m = *last;
+  const double merge = kSeamMergeSteps * scales.median_step;
+  std::size_t first = 0;
+  while (first + 3 <= m && (p[first] - p[m]).norm() < merge) ++first;
+  // Directions arriving at / leaving each point, over the corner window.
+  auto arrival = [&](std::size_t j) -> std::optional<Vec2> {
+    const auto a = line.walk(static_cast<std::ptrdiff_t>(j), -1, scales.window, 2);
+    if (!a) return std::nullopt;
+    return Vec2(p[j] - line.at(*a));
+  };
+  auto departure = [&](std::size_t i) -> std::optional<Vec2> {
+    const auto b = line.walk(static_cast<std::ptrdiff_t>(i), +1, scales.window, 2);
+    if (!b) return std::nullopt;
+    return Vec2(line.at(*b) - p[i]);
+  };
+  // The larger of the two turns where the closing step P_j -> P_i meets the stroke.
+  auto seamTurn = [&](std::size_t j, const Vec2& in, std::size_t i, const Vec2& out) {
+    const Vec2 closing = p[i] - p[j];
+    return std::max(unsignedAngle(in, closing), unsignedAngle(closing, out));
+  };
+  const double smooth = kSeamSmoothFraction * options.corner_min_angle;
+  const auto in_m = arrival(m);
+  const auto out_first = departure(first);
+  if (in_m && out_first && seamTurn(m, *in_m, first, *out_first) > smooth) {
+    // A kinked seam: if another pair of points in the overlap region closes smoothly, cut
+    // there instead (a circle drawn past its start beside it, or starting with a slip).
+    double best = smooth;
+    std::optional<Seam> better;
+    for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_start; --j) {
+      const auto in = arrival(j);
+      if (!in) continue;
+      for (std::size_t i = 0; i + 3 <= j && s[i] <= kMaxOverlapFraction * length; ++i) {
+        const double gap = (p[i] - p[j]).norm();
+        if (gap < merge || gap > kCrossReach * reach) continue;
+        const auto out = departure(i);
+        if (!out) continue;
+        const double turn = seamTurn(j, *in, i, *out);
+        if (turn < best) {
+          best = turn;
+          better = Seam{i, j + 1};
+        }
+      }
+    }
+    if (better) return better;
+  }
+  if (m + 1 - first < 3) return std::nullopt;
+  return Seam{first, m + 1};
+}
+
+[[noreturn]] void fail(const std::string& what, std::size_t samples, const CleanStroke& c) {
+  std::ostringstream message;
+  message << "stroke cannot be fitted: " << what << " (" << samples << " samples: " << c.removed_invalid
+          << " non-finite, " << c.removed_duplicates << " duplicates";
+  if (c.trimmed_start + c.trimmed_end > 0) message << ", " << c.trimmed_start + c.trimmed_end << " trimmed as hooks";
+  if (c.removed_overlap > 0) message << ", " << c.removed_overlap << " cut as closing overlap";
+  message << ", " << c.points.size() << " left)";
+  throw StrokeError(message.str());
+}
+
+/// Largest distance of the points from their least-squares line.
+double lineDeviation(const std::vector<Vec2>& p) {
+  Vec2 centroid = Vec2::Zero();
+  for (const Vec2& q : p) centroid += q;
+  centroid /= static_cast<double>(p.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const Vec2& q : p) scatter += (q - centroid) * (q - centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
+  const Vec2 normal = eigen.eigenvectors().col(0);  // smallest eigenvalue first
+  double deviation = 0.0;
+  for (const Vec2& q : p) deviation = std::max(deviation, std::abs((q - centroid).dot(normal)));
+  return deviation;
+}
+
+}  // namespace
+
+CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
+  CleanStroke result;
+  const std::size_t samples = raw.samples.size();
+
+  // 1. Non-finite samples, then consecutive duplicates.
+  std::vector<Vec2> finite;
+  std::vector<std::size_t> finite_source;
+  for (std::size_t i = 0; i < samples; ++i) {
+    if (!allFinite(raw.samples[i].p)) {
+      ++result.removed_invalid;
+      continue;
+    }
+    finite.push_back(raw.samples[i].p);
+    finite_source.push_back(i);
+  }
+  const double duplicate_distance = kDuplicateTolerance * boxDiagonal(finite);
+  Points pts;
+  for (std::size_t i = 0; i < finite.size(); ++i) {
+    if (!pts.p.empty() && (finite[i] - pts.p.back()).norm() <= duplicate_distance) {
+      ++result.removed_duplicates;
+      continue;
+    }
+    pts.p.push_back(finite[i]);
+    pts.src.push_back(finite_source[i]);
+  }
+  auto publish = [&] {
+    result.points = pts.p;
+    result.source = pts.src;
+  };
+  if (pts.size() < 3) {
+    publish();
+    fail("fewer than 3 distinct finite points", samples, result);
+  }
+
+  // 2. Pen-down outlier.
+  if (!options.assume_closed && options.outlier_step_factor > 0.0 && pts.size() >= kMinPointsForOutlierTest) {
+    const double median_step = medianStep(pts.p);
+    std::size_t dropped = 0;
+    while (dropped < kMaxOutlierPoints && pts.size() - dropped > 3 &&
+           (pts.p[dropped + 1] - pts.p[dropped]).norm() > options.outlier_step_factor * median_step) {
+      ++dropped;
+    }
+    pts.dropFront(dropped);
+    result.trimmed_start += dropped;
+  }
+
+  // 3. Closed?
+  auto close = [&](const Seam& seam) {
+    result.closed = true;
+    result.removed_overlap += seam.first + (pts.size() - seam.end);
+    pts.keepFront(seam.end);
+    pts.dropFront(seam.first);
+  };
+  Scales scales = measureScales(pts.p, false, options);
+  if (options.assume_closed || options.detect_closed) {
+    if (const auto seam = findSeam(pts.p, scales, options)) close(*seam);
+  }
+  if (options.assume_closed) result.closed = true;
+
+  // 4. Hooks at both ends of an open stroke; then closure once more.
+  if (!result.closed && pts.size() > 3) {
+    const double drawn_length = arcLengths(pts.p).back();
+    HookLimits limits{(1.0 - kMinKeptFraction) * drawn_length, pts.size() - 3};
+    const std::size_t start = startHook(pts.p, drawn_length, scales, limits, options);
+    if (start > 0) {
+      limits.max_length -= arcLengths(pts.p)[start];
+      limits.max_points -= start;
+      pts.dropFront(start);
+      result.trimmed_start += start;
+    }
+    const std::vector<Vec2> reversed(pts.p.rbegin(), pts.p.rend());
+    const std::size_t end = startHook(reversed, drawn_length, scales, limits, options);
+    if (end > 0) {
+      pts.keepFront(pts.size() - end);
+      result.trimmed_end += end;
+    }
+    if ((start > 0 || end > 0) && options.detect_closed) {
+      if (const auto seam = findSeam(pts.p, scales, options)) close(*seam);
+    }
+  }
+
+  // 5. Input errors.
+  publish();
+  result.diagonal = boxDiagonal(pts.p);
+  if (lineDeviation(pts.p) < kCollinearTolerance * result.diagonal) {
+    fail("all points lie on one straight line", samples, result);
+  }
+
+  // 6. Corners; a closed stroke starts at its corner nearest the original start.
+  if (options.detect_corners) {
+    scales = measureScales(pts.p, result.closed, options);
+    result.corners = findCorners(pts.p, result.closed, scales.window, options);
+  }
+  if (result.closed && !result.corners.empty()) {
+    const std::size_t n = pts.size();
+    std::size_t shift = result.corners.front();
+    for (std::size_t c : result.corners) {
+      if (std::min(c, n - c) < std::min(shift, n - shift)) shift = c;
+    }
+    const auto offset = static_cast<std::ptrdiff_t>(shift);
+    std::rotate(result.points.begin(), result.points.begin() + offset, result.points.end());
+    std::rotate(result.source.begin(), result.source.begin() + offset, result.source.end());
+    for (std::size_t& c : result.corners) c = (c + n - shift) % n;
+    std::sort(result.corners.begin(), result.corners.end());
+  }
+  return result;
+}
+
+}  // namespace la
