@@ -226,7 +226,16 @@ G2Result makeG2(Chain& chain, const G2Options& options) {
     out.report = {SolveStatus::kInfeasible, 0, INFINITY, why};
     return out;
   }
-  if (options.method == G2Method::kNewton) out.report = newton(sys, options);
+  if (options.method == G2Method::kNewton) {
+    out.report = newton(sys, options);
+    if (!out.report.usable()) {  // Newton stalls near the edge of feasibility; joint by joint may still get there
+      const SolveReport fallback = bisection(sys, options);
+      out.report = fallback.usable() ? SolveReport{SolveStatus::kConverged, out.report.iterations + fallback.iterations, fallback.residual,
+                                                   "G2 by Newton, finished joint by joint (" + out.report.message + ")"}
+                                     : SolveReport{fallback.status, out.report.iterations + fallback.iterations, fallback.residual,
+                                                   out.report.message + "; then " + fallback.message};
+    }
+  }
   else if (options.method == G2Method::kBisection) out.report = bisection(sys, options);
   else out.report = {SolveStatus::kConverged, 0, sys.maxRelGap(), "G2 off: curvature gaps left as they are"};
   if (!sys.solveAll(&why)) {  // every path above leaves the pieces solved; this guards the invariant

@@ -22,6 +22,9 @@ constexpr double kLcgTrim = 0.1;
 constexpr double kDefaultAlpha = -1.0;
 constexpr double kWidestAlpha = 0.5;
 constexpr int kAlphaBisections = 12;
+constexpr int kMaxAlphaRelaxations = 3;
+// A piece turning less than this (radians) counts as straight: no turning direction.
+constexpr double kStraightTurning = 1e-9;
 // Passes that split pieces which fail (no LA segment) or stray from the points.
 constexpr int kMaxRefinePasses = 8;
 // Points on an integer grid (pixels) are off the true stroke by up to sqrt(2)/2 of a
@@ -164,6 +167,34 @@ std::vector<double> pieceDeviations(const std::vector<LaSegment>& segments, cons
   return out;
 }
 
+// An inflection end needs the curve to bend late (chord angle at the inflection end
+// below half the turning); a nearly straight piece from a noisy spline may miss that by
+// a hair. Such a piece gets the tangent at its other end turned just enough (the G2
+// solve moves that joint anyway).
+void openInflectionTriangles(Chain& chain) {
+  constexpr double kMargin = 1.1;  // the chord angle ends at 1/kMargin of half the turning
+  const std::size_t n = chain.size();
+  auto set = [&](std::size_t joint, double value) {
+    const double delta = value - chain.angles[joint];
+    chain.angles[joint] = value;
+    if (chain.closed && (joint == 0 || joint == n)) chain.angles[joint == 0 ? n : 0] += delta;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    const PieceKind kind = chain.pieces[i].kind;
+    if (kind == PieceKind::kThreePoint || solvePiece(chain, i).report.usable()) continue;
+    const Vec2 chord = chain.joints[i + 1] - chain.joints[i];
+    const double turning = chain.angles[i + 1] - chain.angles[i];
+    const double sign = turning < 0 ? -1.0 : 1.0;
+    if (kind == PieceKind::kInflectionStart) {
+      const double phi = std::abs(signedAngle(unitVector(chain.angles[i]), chord));
+      if (2.0 * kMargin * phi < std::numbers::pi) set(i + 1, chain.angles[i] + sign * std::max(std::abs(turning), 2.0 * kMargin * phi));
+    } else {
+      const double phi = std::abs(signedAngle(chord, unitVector(chain.angles[i + 1])));
+      if (2.0 * kMargin * phi < std::numbers::pi) set(i, chain.angles[i + 1] - sign * std::max(std::abs(turning), 2.0 * kMargin * phi));
+    }
+  }
+}
+
 struct PartFit {
   std::vector<LaSegment> segments;
   std::vector<PieceReport> reports;
@@ -226,6 +257,36 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
       chain.angles.back() = chain.angles.front() + 2.0 * std::numbers::pi *
                                                        std::round((chain.angles.back() - chain.angles.front()) / (2.0 * std::numbers::pi));
     }
+    // Curvature must be zero where the turning direction changes from one piece to the
+    // next (a sign change the segmentation dropped as noise, or one a halving exposed):
+    // such ends are inflection ends too. A piece that would have two needs halving.
+    std::vector<int> turn(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double d = chain.angles[i + 1] - chain.angles[i];
+      turn[i] = std::abs(d) < kStraightTurning ? 0 : (d > 0 ? 1 : -1);
+    }
+    auto flips = [&](std::size_t a, std::size_t b) { return turn[a] != 0 && turn[b] != 0 && turn[a] != turn[b]; };
+    std::vector<bool> inflect_start(n), inflect_end(n);
+    bool split_needed = false;
+    std::vector<SplitPoint> refined;
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool has_prev = seg.closed || i > 0, has_next = seg.closed || i + 1 < n;
+      inflect_start[i] = seg.splits[i].kind == SplitKind::kInflection || (has_prev && flips((i + n - 1) % n, i));
+      inflect_end[i] = seg.splits[(i + 1) % seg.splits.size()].kind == SplitKind::kInflection ||
+                       (has_next && flips(i, (i + 1) % n));
+      refined.push_back(seg.splits[i]);
+      if (inflect_start[i] && inflect_end[i]) {
+        split_needed = true;
+        const double t1 = seg.splits[(i + 1) % seg.splits.size()].t;
+        const double tm = spline.wrap(0.5 * (seg.splits[i].t + (t1 > seg.splits[i].t ? t1 : t1 + period)));
+        refined.push_back({tm, SplitKind::kTurning, spline.curvature(tm)});
+      }
+    }
+    if (split_needed && pass < kMaxRefinePasses) {
+      if (!seg.closed) refined.push_back(seg.splits.back());
+      seg.splits = std::move(refined);
+      continue;
+    }
     std::vector<PieceReport> reports(n);
     for (std::size_t i = 0; i < n; ++i) {
       const SplitPoint& a = seg.splits[i];
@@ -239,9 +300,9 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
       const LcgFit lcg = lcgOfPiece(spline, rep.t0, rep.t1);
       rep.lcg_alpha = lcg.alpha;
       rep.lcg_r2 = lcg.r2;
-      if (a.kind == SplitKind::kInflection && b.kind != SplitKind::kInflection) {
+      if (inflect_start[i] && !inflect_end[i]) {
         piece.kind = PieceKind::kInflectionStart;
-      } else if (b.kind == SplitKind::kInflection && a.kind != SplitKind::kInflection) {
+      } else if (inflect_end[i] && !inflect_start[i]) {
         piece.kind = PieceKind::kInflectionEnd;
       } else {
         piece.kind = PieceKind::kThreePoint;
@@ -262,6 +323,7 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
       rep.alpha = piece.alpha;
       chain.pieces.push_back(piece);
     }
+    openInflectionTriangles(chain);
     timings.alpha_ms += msSince(t0);
 
     // Stage 6.
@@ -271,6 +333,23 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
     g2.threshold = options.g2_threshold;
     g2.diagonal = diag;
     G2Result res = makeG2(chain, g2);
+    // A joint whose gap no tangent angle closes sits between pieces whose alphas reach
+    // too few triangle shapes: move those alphas halfway towards the widest-range alpha
+    // and solve again (recorded as alpha_moved).
+    for (int retry = 0; retry < kMaxAlphaRelaxations && !res.segments.empty() && !res.report.usable(); ++retry) {
+      bool moved = false;
+      for (std::size_t k = 0; k < res.gaps.size(); ++k) {
+        if (res.gaps[k] <= options.g2_threshold) continue;
+        const std::size_t joint = chain.closed ? k : k + 1;
+        for (std::size_t i : {(joint + n - 1) % n, joint % n}) {
+          if (chain.pieces[i].kind != PieceKind::kThreePoint || chain.pieces[i].alpha == kWidestAlpha) continue;
+          chain.pieces[i].alpha = 0.5 * (chain.pieces[i].alpha + kWidestAlpha);
+          reports[i].alpha_moved = moved = true;
+        }
+      }
+      if (!moved) break;
+      res = makeG2(chain, g2);
+    }
     timings.g2_ms += msSince(t0);
     // Pieces to halve: those with no LA segment (tangents not forming a convex
     // triangle, or no alpha reaching it), else those whose segment strays from the

@@ -57,13 +57,16 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     }
   };
   // Points and curve run in the same order, so each foot is searched near the last
-  // one, the window growing while the best edge sits on its border. The first point
-  // (and a closed curve's seam) gets the whole curve.
+  // one, the window growing while the best edge sits on its border (for a closed curve
+  // the seam is found by the check below). The first point gets the whole curve.
+  // A window can lock onto a wrong passage where the curve comes back near itself:
+  // a foot further than kLostFraction of the diagonal is checked against the whole curve.
+  constexpr double kLostFraction = 0.01;
   int foot = -1;
   for (std::size_t i = 0; i < points.size(); ++i) {
     double best = INFINITY;
     int best_e = -1;
-    if (foot < 0 || curve.closed) {
+    if (foot < 0) {
       nearest(points[i], 0, edges - 1, best, best_e);
     } else {
       int lo = foot - kSearchWindow, hi = foot + kSearchWindow;
@@ -79,6 +82,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
         }
       }
     }
+    if (best > kLostFraction * diagonal) nearest(points[i], 0, edges - 1, best, best_e);
     out[i] = best;
     foot = best_e;
   }

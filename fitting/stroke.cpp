@@ -232,8 +232,9 @@ class Polyline {
 };
 
 /// Deliberate corners: turn over the window above corner_min_angle, sharp, then
-/// non-maximum suppression (strongest first, nothing within one window of an accepted
-/// corner) and each placed on the point farthest from the chord across its window.
+/// non-maximum suppression (strongest first; a candidate whose window reaches an
+/// accepted corner is dropped) and each placed on the point farthest from the chord
+/// across its window.
 std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, double w,
                                      const CleanupOptions& options) {
   const Polyline line(p, closed);
@@ -273,9 +274,14 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
       }
     }
     if (!closed && (vertex < kMinSideSamples || vertex > n - 1 - kMinSideSamples)) vertex = c.i;
+    // A candidate whose window reaches an accepted corner is that corner seen off-centre.
     const bool suppressed = std::any_of(accepted.begin(), accepted.end(), [&](std::ptrdiff_t v) {
-      return v == vertex || line.distance(v, vertex) < w || line.distance(v, c.i) < w;
+      const std::ptrdiff_t offset = line.wrap(v - c.turn.a);
+      return v == vertex || (offset >= 0 && c.turn.a + offset <= c.turn.b);
     });
+#ifdef LAFAIR_STROKE_DEBUG
+    std::fprintf(stderr, "    nms i=%td vertex=%td a=%td b=%td suppressed=%d\n", c.i, vertex, c.turn.a, c.turn.b, suppressed);
+#endif
     if (!suppressed) accepted.push_back(vertex);
   }
   std::vector<std::size_t> corners(accepted.begin(), accepted.end());
@@ -291,8 +297,9 @@ struct HookLimits {
 
 /// Number of leading points of p that form a hook (0 if none). A candidate junction k
 /// is accepted when
-///  - the piece P_0..P_k is short (hook_max_fraction of the drawn length, and within
-///    the limits), nearly straight, and longer than kHookMinNoise noise levels;
+///  - the piece P_0..P_k is short (hook_max_fraction of the drawn length, at most
+///    hook_max_samples points, and within the limits), nearly straight, and longer than
+///    kHookMinNoise noise levels;
 ///  - its chord P_0 P_k turns by more than hook_min_angle against the chord from P_k
 ///    over the next window w;
 ///  - the turn at P_k is sharp (the corner test, with the hook side of the window cut
@@ -306,7 +313,8 @@ std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Sca
   const double w = scales.window;
   std::size_t best = 0;
   double best_turn = options.hook_min_angle;
-  for (std::size_t k = 1; k <= limits.max_points && k < p.size() && s[k] <= max_length; ++k) {
+  const std::size_t max_points = std::min(limits.max_points, options.hook_max_samples);
+  for (std::size_t k = 1; k <= max_points && k < p.size() && s[k] <= max_length; ++k) {
     const Vec2 chord = p[k] - p[0];
     const double chord_length = chord.norm();
     double deviation = 0.0;
@@ -460,6 +468,10 @@ double lineDeviation(const std::vector<Vec2>& p) {
   return deviation;
 }
 
+bool collinear(const std::vector<Vec2>& p) {
+  return p.size() < 3 || lineDeviation(p) < kCollinearTolerance * boxDiagonal(p);
+}
+
 }  // namespace
 
 CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
@@ -495,6 +507,12 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     publish();
     fail("fewer than 3 distinct finite points", samples, result);
   }
+  if (collinear(pts.p)) {
+    publish();
+    fail("all points lie on one straight line", samples, result);
+  }
+  // From here on no step removes points if that would leave them collinear: a stroke
+  // that can be fitted stays so.
 
   // 2. Pen-down outlier.
   if (!options.assume_closed && options.outlier_step_factor > 0.0 && pts.size() >= kMinPointsForOutlierTest) {
@@ -504,6 +522,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
            (pts.p[dropped + 1] - pts.p[dropped]).norm() > options.outlier_step_factor * median_step) {
       ++dropped;
     }
+    if (collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(dropped), pts.p.end()))) dropped = 0;
     pts.dropFront(dropped);
     result.trimmed_start += dropped;
   }
@@ -525,7 +544,8 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   if (!result.closed && pts.size() > 3) {
     const double drawn_length = arcLengths(pts.p).back();
     HookLimits limits{(1.0 - kMinKeptFraction) * drawn_length, pts.size() - 3};
-    const std::size_t start = startHook(pts.p, drawn_length, scales, limits, options);
+    std::size_t start = startHook(pts.p, drawn_length, scales, limits, options);
+    if (collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(start), pts.p.end()))) start = 0;
     if (start > 0) {
       limits.max_length -= arcLengths(pts.p)[start];
       limits.max_points -= start;
@@ -533,7 +553,8 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
       result.trimmed_start += start;
     }
     const std::vector<Vec2> reversed(pts.p.rbegin(), pts.p.rend());
-    const std::size_t end = startHook(reversed, drawn_length, scales, limits, options);
+    std::size_t end = startHook(reversed, drawn_length, scales, limits, options);
+    if (collinear(std::vector<Vec2>(pts.p.begin(), pts.p.end() - static_cast<std::ptrdiff_t>(end)))) end = 0;
     if (end > 0) {
       pts.keepFront(pts.size() - end);
       result.trimmed_end += end;
@@ -543,12 +564,10 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     }
   }
 
-  // 5. Input errors.
+  // 5. Input errors (the seam of a closed stroke could leave too little).
   publish();
   result.diagonal = boxDiagonal(pts.p);
-  if (lineDeviation(pts.p) < kCollinearTolerance * result.diagonal) {
-    fail("all points lie on one straight line", samples, result);
-  }
+  if (collinear(pts.p)) fail("all points lie on one straight line", samples, result);
 
   // 6. Corners; a closed stroke starts at its corner nearest the original start.
   if (options.detect_corners) {

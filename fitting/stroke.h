@@ -16,7 +16,8 @@
 //     point nearest the start is cut. assume_closed skips the test (glyph contours, SVG
 //     paths with Z): the stroke is closed whatever its gap;
 //  4. hooks (open strokes only): a short straight end piece (<= hook_max_fraction of the
-//     length) that meets the rest at a sharp turn of more than hook_min_angle is cut.
+//     length, <= hook_max_samples samples) that meets the rest at a sharp turn of more
+//     than hook_min_angle is cut.
 //     Directions are chords over an arc-length window, so 1-px quantization does not
 //     trigger it, and a smooth end curl (the tail of a brace) is not a hook. At least 3
 //     points and 70% of the drawn length always remain. After trimming, 3 is tried again;
@@ -28,6 +29,7 @@
 // rotated so that its first corner is at index 0 (corners.front() == 0); `source` is
 // rotated with it. Without corners the original start is kept.
 
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -55,10 +57,15 @@ struct CleanupOptions {
   /// drawing (0 or less: off). Pen-down first steps are short: in the $1 stylus data they
   /// are 0.3-1.3 median steps, in the MMG data the outliers are 2.7-11 median steps.
   double outlier_step_factor = 3.0;
-  /// Hooks: an end piece no longer than this fraction of the stroke length that
-  /// turns by more than hook_min_angle against the rest is cut off.
+  /// Hooks: an end piece no longer than this fraction of the stroke length and made of
+  /// at most hook_max_samples samples, that turns by more than hook_min_angle against the
+  /// rest, is cut off. A hook is the pen slipping as it lands or lifts, which takes a few
+  /// samples at 60-120 Hz (1-5 in the $1 and MMG stylus data); a deliberate short leg
+  /// takes longer (10-22 samples in the Omniglot and MMG star strokes). Raise
+  /// hook_max_samples for devices that sample much faster.
   double hook_max_fraction = 0.12;
   double hook_min_angle = 1.2;  // radians (~70 degrees)
+  std::size_t hook_max_samples = 6;
   /// Corners: a point where the stroke turns by more than corner_min_angle within a
   /// short window (corner_window of the stroke length, at least 2 samples a side) is a
   /// deliberate corner; the stroke is faired piecewise between corners. The turn must be
