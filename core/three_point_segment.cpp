@@ -243,11 +243,12 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
   out.report = root.report;
   out.shape = root.x;
   if (root.report.status == SolveStatus::kInfeasible) {
-    out.reachable = reachableChordAngles(alpha, theta_d, options);
-    out.report.message = "triangle not reachable with alpha = " + std::to_string(alpha) +
-                         ": chord angle " + std::to_string(target) + " rad, reachable " +
-                         rangeText(out.reachable) + " for turning angle " +
-                         std::to_string(theta_d) + " rad";
+    out.report.message = "triangle not reachable with alpha = " + std::to_string(alpha) + ": chord angle " +
+                         std::to_string(target) + " rad for turning angle " + std::to_string(theta_d) + " rad";
+    if (options.report_reachable) {
+      out.reachable = reachableChordAngles(alpha, theta_d, options);
+      out.report.message += ", reachable " + rangeText(out.reachable);
+    }
     return out;
   }
   if (!root.report.usable()) return out;

@@ -30,6 +30,9 @@ struct ThreePointOptions {
   /// Shapes are searched for |m| <= max_log_radius_ratio (a curvature ratio of
   /// e^30 ~ 1e13 between the ends); beyond it the triangle is reported infeasible.
   double max_log_radius_ratio = 30.0;
+  /// Compute the reachable range for an infeasible triangle (two more evaluations at the
+  /// extreme shapes; a caller that only asks "is it feasible?" may skip them).
+  bool report_reachable = true;
 };
 
 /// The LA segment with the given alpha (finite, or +-inf for a circular arc) through

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cmath>
 #include <string>
 
@@ -25,6 +26,14 @@ constexpr int kAlphaBisections = 12;
 constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
 constexpr double kStraightTurning = 1e-9;
+// Alpha by least squares: scan points over [min_alpha, max_alpha], golden-section steps
+// after (0.618^12 of one scan step: ~0.005 in alpha), at most this many points per piece
+// and samples of the segment for the distances.
+constexpr int kAlphaScan = 7;
+constexpr int kAlphaRefinements = 10;
+constexpr std::size_t kAlphaPoints = 32;
+constexpr std::size_t kMinPointsForAlphaFit = 8;
+constexpr int kDeviationSamples = 40;
 // Passes that split pieces which fail (no LA segment) or stray from the points.
 constexpr int kMaxRefinePasses = 8;
 // Points on an integer grid (pixels) are off the true stroke by up to sqrt(2)/2 of a
@@ -35,6 +44,7 @@ constexpr double kQuantizationFloor = 0.75;
 // The noise floor of the tolerance is this many standard deviations of the points'
 // estimated noise: a 2D Gaussian exceeds 4 sigma with probability e^-8 ~ 3e-4.
 constexpr double kNoiseSigmas = 4.0;
+constexpr double kSplineToleranceFraction = 0.2;
 
 using Clock = std::chrono::steady_clock;
 
@@ -44,7 +54,7 @@ using Clock = std::chrono::steady_clock;
 // (along the normal of the chord p[i-2]p[i+2], so uneven spacing along the stroke does
 // not count): they cancel any cubic, i.e. the curve's own bending, and for independent
 // noise sigma have standard deviation sigma sqrt(70); the median ignores corners.
-double noiseFloor(const std::vector<Vec2>& p) {
+double noiseSigma(const std::vector<Vec2>& p) {
   if (p.size() < 7) return 0.0;
   std::vector<double> d;
   for (std::size_t i = 2; i + 2 < p.size(); ++i) {
@@ -56,7 +66,10 @@ double noiseFloor(const std::vector<Vec2>& p) {
   }
   if (d.empty()) return 0.0;
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  const double sigma = d[d.size() / 2] / 0.6745 / std::sqrt(70.0);  // median of |N(0,s)| = 0.6745 s
+  return d[d.size() / 2] / 0.6745 / std::sqrt(70.0);  // median of |N(0,s)| = 0.6745 s
+}
+
+double noiseFloor(const std::vector<Vec2>& p, double sigma) {
   const bool on_grid = std::all_of(p.begin(), p.end(), [](const Vec2& q) {
     return q.x() == std::round(q.x()) && q.y() == std::round(q.y());
   });
@@ -121,7 +134,9 @@ LcgFit lcgOfPiece(const CubicBSpline& s, double t0, double t1) {
 // The alpha nearest `wanted` for which the triangle is reachable (bisection on
 // reachability between `wanted` and the widest-range alpha); NaN if none is.
 double nearestFeasibleAlpha(double wanted, const Vec2& q0, const Vec2& q1, const Vec2& q2) {
-  auto ok = [&](double a) { return solveThreePointSegment(a, q0, q1, q2).report.usable(); };
+  ThreePointOptions quick;
+  quick.report_reachable = false;
+  auto ok = [&](double a) { return solveThreePointSegment(a, q0, q1, q2, quick).report.usable(); };
   if (ok(wanted)) return wanted;
   double good = NAN;
   for (double a : {kWidestAlpha, 0.0, 0.9}) {
@@ -139,30 +154,42 @@ double nearestFeasibleAlpha(double wanted, const Vec2& q0, const Vec2& q1, const
   return good;
 }
 
-// Largest distance from the points of each piece (by their spline parameter) to its LA
-// segment; with no segments, to the spline itself (the smoothing's own error there).
-std::vector<double> pieceDeviations(const std::vector<LaSegment>& segments, const std::vector<PieceReport>& pieces,
-                                    const std::vector<Vec2>& points, const SmoothingResult& smooth, double diag,
-                                    double period) {
-  std::vector<double> out(pieces.size(), 0.0);
-  std::vector<std::vector<Vec2>> members(pieces.size());
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    double t = smooth.parameters[k];
+// The points of each piece, by their spline parameter (a closed spline's last piece
+// runs through the seam: its t1 exceeds tMax by up to a period).
+std::vector<std::vector<std::size_t>> pointsOfPieces(const std::vector<PieceReport>& pieces,
+                                                     const SmoothingResult& smooth, double period) {
+  std::vector<std::vector<std::size_t>> members(pieces.size());
+  for (std::size_t k = 0; k < smooth.parameters.size(); ++k) {
+    const double t = smooth.parameters[k];
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const double tt = (t < pieces[i].t0 && smooth.spline.isPeriodic()) ? t + period : t;
       if (tt >= pieces[i].t0 && tt <= pieces[i].t1) {
-        if (segments.empty()) out[i] = std::max(out[i], (smooth.spline.point(t) - points[k]).norm());
-        else members[i].push_back(points[k]);
+        members[i].push_back(k);
         break;
       }
     }
   }
-  if (segments.empty()) return out;
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    if (members[i].empty()) continue;
+  return members;
+}
+
+// Largest distance from the points of each piece to its LA segment; with no segments,
+// to the spline itself (the smoothing's own error there).
+std::vector<double> pieceDeviations(const std::vector<LaSegment>& segments,
+                                    const std::vector<std::vector<std::size_t>>& members,
+                                    const std::vector<Vec2>& points, const SmoothingResult& smooth, double diag) {
+  std::vector<double> out(members.size(), 0.0);
+  for (std::size_t i = 0; i < members.size(); ++i) {
+    if (segments.empty()) {
+      for (std::size_t k : members[i])
+        out[i] = std::max(out[i], (smooth.spline.point(smooth.parameters[k]) - points[k]).norm());
+      continue;
+    }
+    std::vector<Vec2> mine;
+    for (std::size_t k : members[i]) mine.push_back(points[k]);
+    if (mine.empty()) continue;
     Curve one;
     one.pieces.push_back({segments[i], false});
-    for (double d : distancesToCurve(one, members[i], diag)) out[i] = std::max(out[i], d);
+    for (double d : distancesToCurve(one, mine, diag)) out[i] = std::max(out[i], d);
   }
   return out;
 }
@@ -195,6 +222,59 @@ void openInflectionTriangles(Chain& chain) {
   }
 }
 
+// Sum of squared distances from `points` to the segment (a polyline of it).
+double squaredDeviation(const LaSegment& seg, const std::vector<Vec2>& points) {
+  const CurveSamples smp = seg.sample(kDeviationSamples);
+  double sum = 0.0;
+  for (const Vec2& p : points) {
+    double best = INFINITY;
+    for (std::size_t e = 0; e + 1 < smp.point.size(); ++e) {
+      const Vec2 a = smp.point[e], ab = smp.point[e + 1] - a;
+      const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+      best = std::min(best, (a + t * ab - p).squaredNorm());
+    }
+    sum += best;
+  }
+  return sum;
+}
+
+// The alpha whose LA segment through the triangle lies closest to the points (least
+// squares). The LCG of a cubic spline is a poor witness of alpha (its curvature
+// derivative jumps at every knot), so the LCG slope only starts this search: a coarse
+// scan of [min_alpha, max_alpha], then golden-section refinement around the best.
+double fitAlphaToPoints(double start, const Vec2& q0, const Vec2& q1, const Vec2& q2, const std::vector<Vec2>& points,
+                        double min_alpha, double max_alpha) {
+  ThreePointOptions quick;
+  quick.report_reachable = false;
+  auto cost = [&](double a) {
+    const SegmentSolve s = solveThreePointSegment(a, q0, q1, q2, quick);
+    return s.report.usable() ? squaredDeviation(*s.segment, points) : INFINITY;
+  };
+  double best = start, best_cost = cost(start);
+  for (int k = 0; k < kAlphaScan; ++k) {
+    const double a = min_alpha + (max_alpha - min_alpha) * k / (kAlphaScan - 1);
+    const double c = cost(a);
+    if (c < best_cost) best = a, best_cost = c;
+  }
+  if (!std::isfinite(best_cost)) return start;
+  const double step = (max_alpha - min_alpha) / (kAlphaScan - 1);
+  double lo = std::max(min_alpha, best - step), hi = std::min(max_alpha, best + step);
+  constexpr double kGolden = 0.6180339887498949;
+  double x1 = hi - kGolden * (hi - lo), x2 = lo + kGolden * (hi - lo);
+  double c1 = cost(x1), c2 = cost(x2);
+  for (int k = 0; k < kAlphaRefinements; ++k) {
+    if (c1 <= c2) {
+      hi = x2, x2 = x1, c2 = c1;
+      x1 = hi - kGolden * (hi - lo), c1 = cost(x1);
+    } else {
+      lo = x1, x1 = x2, c1 = c2;
+      x2 = lo + kGolden * (hi - lo), c2 = cost(x2);
+    }
+  }
+  const double refined = c1 <= c2 ? x1 : x2;
+  return std::min(c1, c2) <= best_cost ? refined : best;
+}
+
 struct PartFit {
   std::vector<LaSegment> segments;
   std::vector<PieceReport> reports;
@@ -208,8 +288,8 @@ struct PartFit {
 namespace {
 
 // Stages 2-6 for one corner-free part.
-PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& options, StageTimings& timings,
-                std::vector<std::string>& warnings) {
+PartFit fitPart(const Part& part, double tol, double sigma, double diag, const FitOptions& options,
+                StageTimings& timings, std::vector<std::string>& warnings) {
   PartFit out;
   out.smoothing = {SolveStatus::kConverged, 0, 0.0, "straight"};
   out.g2 = {SolveStatus::kConverged, 0, 0.0, "straight"};
@@ -225,7 +305,11 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
   }
   auto t0 = Clock::now();
   SmoothingOptions so;
-  so.tolerance = tol;
+  // The spline's curvature feeds segmentation and alpha, so it is fitted tighter than the
+  // user's tolerance where the data allow: down to their noise level, or a fraction of
+  // the tolerance for clean data.
+  so.tolerance = std::min(tol, std::max(kNoiseSigmas * sigma, kSplineToleranceFraction * tol));
+  so.noise_sigma = sigma;
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
@@ -238,6 +322,8 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
   timings.segmentation_ms += msSince(t0);
 
   const double period = spline.tMax() - spline.tMin();
+  // Pieces a refinement pass leaves alone keep the alpha fitted to them before.
+  std::map<std::pair<double, double>, double> fitted_alpha;
   for (int pass = 0;; ++pass) {
     // Stage 4-5: chain of pieces with alpha from the LCG.
     t0 = Clock::now();
@@ -291,11 +377,14 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
     for (std::size_t i = 0; i < n; ++i) {
       const SplitPoint& a = seg.splits[i];
       const SplitPoint& b = seg.splits[(i + 1) % seg.splits.size()];
+      reports[i].t0 = a.t;
+      reports[i].t1 = (b.t > a.t) ? b.t : b.t + period;
+      reports[i].start_kind = a.kind;
+      reports[i].end_kind = b.kind;
+    }
+    const std::vector<std::vector<std::size_t>> members = pointsOfPieces(reports, smooth, period);
+    for (std::size_t i = 0; i < n; ++i) {
       PieceReport& rep = reports[i];
-      rep.t0 = a.t;
-      rep.t1 = (b.t > a.t) ? b.t : b.t + period;
-      rep.start_kind = a.kind;
-      rep.end_kind = b.kind;
       ChainPiece piece;
       const LcgFit lcg = lcgOfPiece(spline, rep.t0, rep.t1);
       rep.lcg_alpha = lcg.alpha;
@@ -314,6 +403,16 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
           if (!std::isnan(feasible) && feasible != alpha) {
             rep.alpha_moved = true;
             alpha = feasible;
+          }
+          const auto cached = fitted_alpha.find({rep.t0, rep.t1});
+          if (cached != fitted_alpha.end()) {
+            alpha = cached->second;
+          } else if (members[i].size() >= kMinPointsForAlphaFit) {
+            std::vector<Vec2> sample;
+            const std::size_t m = members[i].size(), take = std::min(m, kAlphaPoints);
+            for (std::size_t k = 0; k < take; ++k) sample.push_back(part.points[members[i][k * (m - 1) / std::max<std::size_t>(take - 1, 1)]]);
+            alpha = fitAlphaToPoints(alpha, q0, q1, q2, sample, options.min_alpha, options.max_alpha);
+            fitted_alpha[{rep.t0, rep.t1}] = alpha;
           }
         }
         chain.pieces.pop_back();
@@ -359,8 +458,8 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
     if (res.segments.empty()) {
       for (std::size_t i = 0; i < n; ++i) any |= halve[i] = !solvePiece(chain, i).report.usable();
     } else {
-      const std::vector<double> dev = pieceDeviations(res.segments, reports, part.points, smooth, diag, period);
-      const std::vector<double> own = pieceDeviations({}, reports, part.points, smooth, diag, period);
+      const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
+      const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
       for (std::size_t i = 0; i < n; ++i) any |= halve[i] = dev[i] > std::max(tol, 1.05 * own[i]);
     }
     if (any && pass < kMaxRefinePasses) {
@@ -379,8 +478,21 @@ PartFit fitPart(const Part& part, double tol, double diag, const FitOptions& opt
     if (any && !res.segments.empty()) warnings.push_back("some segments stay further than the tolerance from the points");
     out.g2 = res.report;
     if (res.segments.empty()) {
-      warnings.push_back("no LA segments for this part: " + res.report.message);
-      return out;
+      // Last resort: the pieces that have an LA segment keep it, the others become
+      // straight lines between their joints. G2 (and G1 at the lines) is lost there and
+      // the quality figures say so.
+      warnings.push_back("part without a full LA chain, straight pieces used where none fits (" +
+                         res.report.message + ")");
+      for (std::size_t i = 0; i < n; ++i) {
+        const SegmentSolve s = solvePiece(chain, i);
+        if (s.report.usable()) {
+          res.segments.push_back(*s.segment);
+        } else {
+          const Vec2 chord = chain.joints[i + 1] - chain.joints[i];
+          res.segments.push_back(LaSegment::arc(chord.norm(), chain.joints[i], angleOf(chord), 0.0));
+          reports[i].alpha = INFINITY;
+        }
+      }
     }
     if (!res.report.usable()) warnings.push_back("G2: " + res.report.message);
     for (std::size_t i = 0; i < n; ++i) {
@@ -402,7 +514,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
   r.tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
-  const double floor = noiseFloor(r.cleaned.points);
+  const double sigma = noiseSigma(r.cleaned.points);
+  const double floor = noiseFloor(r.cleaned.points, sigma);
   if (r.tolerance < floor) {
     r.warnings.push_back("tolerance raised from " + std::to_string(r.tolerance) + " to " + std::to_string(floor) +
                          ": the points are noisier than that (no curve comes closer to all of them)");
@@ -414,7 +527,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    PartFit fit = fitPart(parts[k], r.tolerance, diag, options, r.timings, r.warnings);
+    PartFit fit = fitPart(parts[k], r.tolerance, sigma, diag, options, r.timings, r.warnings);
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);

@@ -3,12 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Dense>
+
 #include "core/polynomial.h"
 
 namespace la {
 namespace {
 
 constexpr int kTurningSamples = 64;  // per piece, for measuring and cutting its turning
+constexpr int kRelocateSamples = 10; // per side, for the parabola through an extremum
 
 struct Critical {
   double t;
@@ -45,6 +48,39 @@ void simplify(std::vector<Critical>& ext, bool closed, double end0, double end1,
       ext.erase(ext.begin());
     }
   }
+}
+
+// A cubic spline's curvature has a kink at every knot, so its extrema tend to sit on
+// knots rather than where the stroke's curvature peaks. Each kept extremum is moved to
+// the vertex of the least-squares parabola through the curvature sampled over a window
+// reaching a third of the way to its neighbours (kept inside the window).
+void relocateExtrema(const CubicBSpline& s, std::vector<Critical>& ext, bool closed) {
+  const double period = s.tMax() - s.tMin();
+  const std::size_t n = ext.size();
+  std::vector<Critical> moved = ext;
+  for (std::size_t i = 0; i < n; ++i) {
+    double left = (i > 0) ? ext[i].t - ext[i - 1].t : (closed && n > 1 ? ext[i].t - ext[n - 1].t + period : ext[i].t - s.tMin());
+    double right = (i + 1 < n) ? ext[i + 1].t - ext[i].t : (closed && n > 1 ? ext[0].t + period - ext[i].t : s.tMax() - ext[i].t);
+    if (closed && n == 1) left = right = 0.5 * period;
+    const double half = std::min(left, right) / 3.0;
+    if (!(half > 0.0)) continue;
+    // least squares kappa ~ c0 + c1 x + c2 x^2, x in [-1, 1]
+    Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+    for (int k = -kRelocateSamples; k <= kRelocateSamples; ++k) {
+      const double x = static_cast<double>(k) / kRelocateSamples;
+      const Eigen::Vector3d row(1.0, x, x * x);
+      ata += row * row.transpose();
+      atb += row * s.curvature(s.wrap(ext[i].t + x * half));
+    }
+    const Eigen::Vector3d c = ata.ldlt().solve(atb);
+    if (!(std::abs(c[2]) > 0.0)) continue;
+    const double x = std::clamp(-c[1] / (2.0 * c[2]), -1.0, 1.0);
+    moved[i].t = s.wrap(ext[i].t + x * half);
+    moved[i].kappa = s.curvature(moved[i].t);
+  }
+  ext = std::move(moved);
+  if (closed) std::sort(ext.begin(), ext.end(), [](const Critical& a, const Critical& b) { return a.t < b.t; });
 }
 
 // Turning of the spline between t0 < t1, from sampled tangent angles.
@@ -121,6 +157,7 @@ Segmentation segmentSpline(const CubicBSpline& spline, const SegmentationOptions
   out.inflections_found = static_cast<int>(zeros.size());
 
   simplify(extrema, out.closed, end0, end1, options.significance * kappa_max, options.max_extrema);
+  relocateExtrema(spline, extrema, out.closed);
 
   // Boundaries of monotone stretches, then one inflection between two of opposite sign.
   std::vector<Critical> bounds;

@@ -32,7 +32,7 @@ struct SplitPoint {
 };
 
 struct SegmentationOptions {
-  double significance = 0.08;       // relative curvature difference of an extremum pair worth keeping
+  double significance = 0.2;        // relative curvature difference of an extremum pair worth keeping
   int max_extrema = -1;             // cap on curvature extrema kept (-1: no cap)
   double max_piece_turning = 2.0;   // radians
 };

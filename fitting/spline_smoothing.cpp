@@ -108,6 +108,12 @@ void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts,
   }
 }
 
+double rmsOf(const std::vector<double>& d) {
+  double sum = 0.0;
+  for (double v : d) sum += v * v;
+  return d.empty() ? 0.0 : std::sqrt(sum / d.size());
+}
+
 struct Attempt {
   std::vector<Vec2> control;
   std::vector<double> t, dist;
@@ -145,7 +151,7 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
       result.report = {SolveStatus::kBadInput, round, INFINITY, "B-spline least squares is singular"};
       return result;
     }
-    if (current.max_error <= options.tolerance) break;
+    if (current.max_error <= options.tolerance || round + 1 == options.max_rounds) break;
     // Split every span holding a point out of tolerance (if it holds enough points).
     const CubicBSpline spline = makeSpline(breaks, current.control, closed);
     const int spans = static_cast<int>(breaks.size()) - 1;
@@ -169,20 +175,23 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
   }
   result.rounds = round + 1;
 
-  // Raise the fairness weight as far as the tolerance allows.
-  if (current.max_error <= options.tolerance && options.fairness_steps > 0) {
+  // Raise the fairness weight as far as the tolerance allows and the noise justifies:
+  // the residuals may grow to the noise level (Morozov's discrepancy principle: rms
+  // distance of 2D noise sigma is sigma sqrt(2)), never past the tolerance margin.
+  if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0) {
     double lo = std::log(weight), hi = std::log(options.max_fairness);
     const double limit = options.fairness_margin * options.tolerance;
+    const double rms_limit = std::sqrt(2.0) * options.noise_sigma;
+    auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
     Attempt probe = current;
-    probe.t = current.t;
-    if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && probe.max_error <= limit) {
+    if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && acceptable(probe)) {
       current = probe;
       weight = options.max_fairness;
     } else {
       for (int k = 0; k < options.fairness_steps; ++k) {
         const double mid = 0.5 * (lo + hi);
         Attempt trial = current;
-        if (attempt(pts, breaks, closed, std::exp(mid), options.foot_point_steps, trial) && trial.max_error <= limit) {
+        if (attempt(pts, breaks, closed, std::exp(mid), options.foot_point_steps, trial) && acceptable(trial)) {
           current = std::move(trial);
           lo = mid;
           weight = std::exp(mid);
@@ -196,9 +205,7 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
   result.spline = makeSpline(breaks, current.control, closed);
   result.parameters = current.t;
   result.max_error = current.max_error;
-  double sum = 0.0;
-  for (double d : current.dist) sum += d * d;
-  result.rms_error = std::sqrt(sum / current.dist.size());
+  result.rms_error = rmsOf(current.dist);
   result.fairness = weight;
   const bool ok = current.max_error <= options.tolerance;
   result.report = {ok ? SolveStatus::kConverged : SolveStatus::kIterationLimit, result.rounds, current.max_error,

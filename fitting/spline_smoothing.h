@@ -9,9 +9,9 @@
 // wraps around). The jerk penalty w is scale-free: t is normalized and the data term
 // grows with N. Knots start uniform and are added at the middle of every span whose
 // worst point is out of tolerance; between solves the parameters t_i move to the foot
-// points (Newton on (C(t) - X) . C'(t) = 0). Once within tolerance, w is raised as far
-// as the tolerance allows (bisection on log w), which removes curvature wiggles the
-// data do not support.
+// points (Newton on (C(t) - X) . C'(t) = 0). Once within tolerance, w is raised
+// (bisection on log w) until the residuals reach the noise level of the points, which
+// removes the curvature wiggles the noise made and keeps the curvature of clean data.
 
 #include <vector>
 
@@ -26,10 +26,12 @@ struct SmoothingOptions {
   int max_spans = 400;
   int max_rounds = 30;
   int foot_point_steps = 2;  // Newton steps per point per round
-  double fairness = 1e-9;    // w, the starting jerk weight
+  double fairness = 1e-14;   // w, the starting jerk weight (just enough to keep empty spans defined)
   double max_fairness = 1e-2;
-  int fairness_steps = 4;    // bisection steps on log w (0: keep w fixed)
+  int fairness_steps = 6;    // bisection steps on log w (0: keep w fixed)
   double fairness_margin = 0.9;  // use at most this fraction of the tolerance when raising w
+  double noise_sigma = 0.0;      // estimated noise of the points; w is raised only while the
+                                 // rms residual stays below sigma sqrt(2) (0: never raised)
 };
 
 struct SmoothingResult {

@@ -39,9 +39,10 @@ constexpr double kDuplicateTolerance = 1e-9;
 constexpr double kCollinearTolerance = 1e-9;
 /// The outlier test needs a median step it can trust: at least this many points.
 constexpr std::size_t kMinPointsForOutlierTest = 6;
-/// At most this many leading points are dropped as outliers. The MMG data have one
-/// outlier per stroke, but in `arrowhead` the pen lands, jumps 12 px back and 13 px
-/// forward again before drawing (two jumps).
+/// The outlier test looks at this many first steps and drops everything before the last
+/// jump among them. In the MMG data the jump is usually the first step, but in 9 of the
+/// 34 strokes the pen-down point is followed by a short slip back (3-8 px) and then the
+/// jump to where the drawing starts (H, I, N, X, arrowhead, asterisk, exclamation point).
 constexpr std::size_t kMaxOutlierPoints = 2;
 /// Hook trimming keeps at least this fraction of the drawn length (the brief: ~70%).
 constexpr double kMinKeptFraction = 0.7;
@@ -76,6 +77,10 @@ constexpr double kHookStraightness = 0.15;
 /// A hook's chord is at least this many noise levels long (about 2 px on pixel-quantized
 /// input); anything shorter is within the sampling noise and harmless to the fit.
 constexpr double kHookMinNoise = 6.0;
+/// Coordinates are on a grid if this share of the step components are multiples of the
+/// smallest one, to within this tolerance (CSV files round to 6 decimals).
+constexpr double kGridShare = 0.95;
+constexpr double kGridTolerance = 1e-3;
 /// Windows are at least this many noise levels long: over such a chord, noise moves
 /// the direction by about 1/8 rad.
 constexpr double kWindowNoise = 8.0;
@@ -141,14 +146,32 @@ struct Points {
 /// Length scales of a stroke, measured once after the outlier test.
 struct Scales {
   double median_step = 0.0;
-  /// Typical distance of a point from the chord of its two neighbours: the sampling
-  /// noise (about 0.3 px for pixel-quantized input), or the sagitta of one step on a
-  /// smooth curve.
+  /// Sampling noise: the median distance of a point from the chord of its two
+  /// neighbours (the sagitta of one step on a smooth exact curve), but at least half
+  /// the spacing of the grid the coordinates are rounded to.
   double noise = 0.0;
   /// The corner window: corner_window of the length, but at least kWindowNoise noise
   /// levels, so that a window's chord direction is good to a few degrees.
   double window = 0.0;
 };
+
+/// The spacing of the grid the coordinates were rounded to (pixels, or the Omniglot
+/// canvas's 0.84 units), 0 if there is none: the smallest nonzero step component, if
+/// nearly all step components are multiples of it.
+double gridSpacing(const std::vector<Vec2>& p) {
+  std::vector<double> components;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    for (const double c : {std::abs(p[i].x() - p[i - 1].x()), std::abs(p[i].y() - p[i - 1].y())}) {
+      if (c > 0.0) components.push_back(c);
+    }
+  }
+  if (components.empty()) return 0.0;
+  const double q = *std::min_element(components.begin(), components.end());
+  const auto on_grid = std::count_if(components.begin(), components.end(), [q](double c) {
+    return std::abs(c / q - std::round(c / q)) < kGridTolerance;
+  });
+  return static_cast<double>(on_grid) >= kGridShare * static_cast<double>(components.size()) ? q : 0.0;
+}
 
 Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptions& options) {
   Scales scales;
@@ -160,6 +183,9 @@ Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptio
     std::nth_element(deviations.begin(), mid, deviations.end());
     scales.noise = *mid;
   }
+  // On a pixel grid most steps of a slanted line are exactly straight runs, so the
+  // median above sees no noise; the quantization is half a grid step.
+  scales.noise = std::max(scales.noise, 0.5 * gridSpacing(p));
   double length = arcLengths(p).back();
   if (closed && p.size() > 1) length += (p.front() - p.back()).norm();
   scales.window = std::max(options.corner_window * length, kWindowNoise * scales.noise);
@@ -232,9 +258,8 @@ class Polyline {
 };
 
 /// Deliberate corners: turn over the window above corner_min_angle, sharp, then
-/// non-maximum suppression (strongest first; a candidate whose window reaches an
-/// accepted corner is dropped) and each placed on the point farthest from the chord
-/// across its window.
+/// non-maximum suppression (strongest first) and each placed on the point farthest from
+/// the chord across its window.
 std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, double w,
                                      const CleanupOptions& options) {
   const Polyline line(p, closed);
@@ -253,7 +278,7 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
     if (!full || full->angle <= options.corner_min_angle) continue;
     const auto half = line.turn(i, 0.5 * w, 1, true);
 #ifdef LAFAIR_STROKE_DEBUG
-    if (half) std::fprintf(stderr, "    cand i=%td full=%.0f half=%.0f ratio=%.2f%s\n", i, full->angle * 57.3, half->angle * 57.3, half->angle / full->angle, half->angle < kSharpRatio * full->angle ? " (round)" : "");
+    if (half) { const auto dbl = line.turn(i, 2.0 * w, 2, true); std::fprintf(stderr, "    cand i=%td full=%.0f half=%.0f ratio=%.2f double=%.2f%s\n", i, full->angle * 57.3, half->angle * 57.3, half->angle / full->angle, dbl ? dbl->angle / full->angle : -1.0, half->angle < kSharpRatio * full->angle ? " (round)" : ""); }
 #endif
     if (!half || half->angle < kSharpRatio * full->angle) continue;
     candidates.push_back({i, *full});
@@ -274,10 +299,9 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
       }
     }
     if (!closed && (vertex < kMinSideSamples || vertex > n - 1 - kMinSideSamples)) vertex = c.i;
-    // A candidate whose window reaches an accepted corner is that corner seen off-centre.
+    // A candidate within one window of an accepted corner is that corner seen off-centre.
     const bool suppressed = std::any_of(accepted.begin(), accepted.end(), [&](std::ptrdiff_t v) {
-      const std::ptrdiff_t offset = line.wrap(v - c.turn.a);
-      return v == vertex || (offset >= 0 && c.turn.a + offset <= c.turn.b);
+      return std::min(line.distance(v, vertex), line.distance(v, c.i)) < w;
     });
 #ifdef LAFAIR_STROKE_DEBUG
     std::fprintf(stderr, "    nms i=%td vertex=%td a=%td b=%td suppressed=%d\n", c.i, vertex, c.turn.a, c.turn.b, suppressed);
@@ -358,7 +382,9 @@ struct Seam {
 ///    a little outside it); everything after the crossing is cut;
 ///  - gap: the end stops within reach of the start.
 /// Then the seam: leading points within half a median step of the new end are dropped
-/// (they repeat it). If the closing step then meets the stroke at a kink, the pair of
+/// (they repeat it), and so is a pen-down slip at the start (a spike: a piece that
+/// would be a hook, turning sharply against the closing step too). If the closing step
+/// then meets the stroke at a kink, the pair of
 /// points (one in the last, one in the first kMaxOverlapFraction of the length, at most
 /// kCrossReach * reach apart) with the smoothest closing step is the seam instead, if it
 /// is smooth; otherwise the kink is a real corner and stays.
@@ -415,6 +441,30 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     const Vec2 closing = p[i] - p[j];
     return std::max(unsignedAngle(in, closing), unsignedAngle(closing, out));
   };
+  // A pen-down slip at the seam: a short straight first piece turning sharply against
+  // both the closing step and the rest of the stroke (a spike) is dropped.
+  {
+    std::size_t spike = 0;
+    double spike_turn = options.hook_min_angle;
+    for (std::size_t k = 1; k <= options.hook_max_samples && first + k + 3 <= m &&
+                            s[first + k] - s[first] <= options.hook_max_fraction * length;
+         ++k) {
+      const std::size_t j = first + k;
+      const Vec2 chord = p[j] - p[first];
+      if (chord.norm() < kHookMinNoise * scales.noise) continue;
+      double deviation = 0.0;
+      for (std::size_t i = first + 1; i < j; ++i) deviation = std::max(deviation, lineDistance(p[i], p[first], p[j]));
+      if (deviation > kHookStraightness * chord.norm()) continue;
+      const auto out = departure(j);
+      if (!out) continue;
+      const double turn = std::min(unsignedAngle(p[first] - p[m], chord), unsignedAngle(chord, *out));
+      if (turn > spike_turn) {
+        spike = k;
+        spike_turn = turn;
+      }
+    }
+    first += spike;
+  }
   const double smooth = kSeamSmoothFraction * options.corner_min_angle;
   const auto in_m = arrival(m);
   const auto out_first = departure(first);
@@ -514,13 +564,12 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   // From here on no step removes points if that would leave them collinear: a stroke
   // that can be fitted stays so.
 
-  // 2. Pen-down outlier.
+  // 2. Pen-down outlier: everything before the last jump among the first steps.
   if (!options.assume_closed && options.outlier_step_factor > 0.0 && pts.size() >= kMinPointsForOutlierTest) {
-    const double median_step = medianStep(pts.p);
+    const double jump = options.outlier_step_factor * medianStep(pts.p);
     std::size_t dropped = 0;
-    while (dropped < kMaxOutlierPoints && pts.size() - dropped > 3 &&
-           (pts.p[dropped + 1] - pts.p[dropped]).norm() > options.outlier_step_factor * median_step) {
-      ++dropped;
+    for (std::size_t j = 0; j < kMaxOutlierPoints; ++j) {
+      if ((pts.p[j + 1] - pts.p[j]).norm() > jump) dropped = j + 1;
     }
     if (collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(dropped), pts.p.end()))) dropped = 0;
     pts.dropFront(dropped);

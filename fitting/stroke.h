@@ -6,10 +6,11 @@
 // The steps, in order (fitting/stroke.cpp explains each one and its constants):
 //  1. drop non-finite samples, then consecutive duplicates (distance <= 1e-9 of the
 //     bounding-box diagonal; the first of a run is kept);
-//  2. pen-down outlier: while the first step is longer than outlier_step_factor times
-//     the median step, drop the first point (at most 2 points; open strokes only). Such a
-//     jump is not drawn geometry (MMG stylus data: a first point 12-33 px away when the
-//     steps are 3-5 px), so its length does not count in the hook budget below;
+//  2. pen-down outlier: if one of the first two steps is longer than
+//     outlier_step_factor times the median step, the points before the (last such) jump
+//     are dropped (not with assume_closed). Such a jump is not drawn geometry (MMG stylus
+//     data: a first point 12-33 px away when the steps are 3-5 px, sometimes with a short
+//     slip before the jump), so its length does not count in the hook budget below;
 //  3. closed? (detect_closed): the end comes back within close_fraction * diagonal of
 //     the start, or the last part of the stroke passes within that distance of the start
 //     (an overlap, e.g. a circle drawn past its start), in which case everything after the

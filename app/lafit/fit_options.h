@@ -19,7 +19,7 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
   --tolerance-abs D    max distance in the input's units (overrides --tolerance)
   --max-extrema N      keep at most N curvature extrema (simplification; default: all significant)
   --significance S     curvature extrema whose pair differs by less than S times the
-                       largest |curvature| are noise (default 0.08)
+                       largest |curvature| are noise (default 0.2)
   --g2 METHOD          newton (default: all joints at once), bisection (the paper's
                        joint-by-joint method), or off (G1 only)
   --g2-threshold T     relative curvature gap allowed at a joint (default 1e-6)

@@ -1,0 +1,241 @@
+// The whole pipeline (fitting/pipeline.h, fitStroke with default options) on every real
+// stroke and profile of the shared data (../shared/data, see its SOURCES.md): every
+// CSV under strokes/ and curves/ ($1 and MMG stylus gestures, Omniglot mouse strokes,
+// KanjiVG and DejaVu glyph samples), the airfoil .dat files and the KanjiVG .svg files,
+// read with la::readStrokes.
+//
+// Per stroke:
+//  - a stroke with fewer than 3 distinct points or all points on one line (decided here,
+//    independently of the clean-up code) must throw StrokeError, and only those; any
+//    other exception, or StrokeError on a fittable stroke, fails;
+//  - the curve is not empty; quality.max_dev <= FitResult::tolerance (plus a rounding
+//    allowance of 1e-9 relative); g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
+//  - glyph contours and the $1 'circle' gestures come out closed (curve.closed);
+//  - the $1 caret, v, rectangle, triangle and star keep their corners
+//    (quality.corners >= 1; the rectangle >= 3).
+// One test per data set; it prints, per set, the worst ratio max_dev / tolerance (file
+// and stroke), how often the tolerance was raised to the noise floor, and every failure
+// with the file, the stroke index and the FitResult warnings.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/io/point_file.h"
+#include "fitting/pipeline.h"
+
+namespace la {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kData = LAFAIR_SHARED_DATA_DIR;
+
+// From the issue.
+constexpr double kG1Threshold = 1e-9;  // radians
+constexpr double kG2Threshold = 1e-6;  // relative curvature gap
+// max_dev may exceed the tolerance by rounding only: 1e-9 of the tolerance.
+constexpr double kDeviationAllowance = 1e-9;
+// Degenerate input as stroke.h defines it (its constants are private to stroke.cpp, so
+// they are restated here): two consecutive points within 1e-9 of the bounding-box
+// diagonal are one; points within 1e-9 of the diagonal of one line are collinear.
+constexpr double kDistinctFraction = 1e-9;
+constexpr double kCollinearFraction = 1e-9;
+
+struct DataSet {
+  const char* name;
+  const char* folder;     // relative to the data folder, searched recursively
+  const char* extension;  // lower case, with the dot
+};
+
+const DataSet kDataSets[] = {
+    {"dollar1", "strokes/dollar1_unistroke_s01_pilot", ".csv"},
+    {"mmg", "strokes/mmg_s10_stylus_medium", ".csv"},
+    {"omniglot", "strokes/omniglot_small1_sample", ".csv"},
+    {"airfoils", "curves/airfoils", ".dat"},
+    {"kanjivg_csv", "curves/kanjivg", ".csv"},
+    {"kanjivg_svg", "curves/kanjivg", ".svg"},
+    {"glyphs", "curves/glyphs_dejavusans", ".csv"},
+};
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::vector<fs::path> filesOf(const fs::path& folder, const std::string& extension) {
+  std::vector<fs::path> out;
+  if (!fs::is_directory(folder)) return out;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file() && lower(entry.path().extension().string()) == extension) out.push_back(entry.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Independent test of the input errors fitStroke must throw StrokeError for.
+bool degenerate(const Stroke& stroke, std::string& why) {
+  std::vector<Vec2> finite;
+  for (const StrokeSample& s : stroke.samples)
+    if (std::isfinite(s.p.x()) && std::isfinite(s.p.y())) finite.push_back(s.p);
+  if (finite.empty()) {
+    why = "no finite points";
+    return true;
+  }
+  Vec2 lo = finite.front(), hi = finite.front();
+  for (const Vec2& p : finite) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double diag = (hi - lo).norm();
+  std::vector<Vec2> distinct;
+  for (const Vec2& p : finite)
+    if (distinct.empty() || (p - distinct.back()).norm() > kDistinctFraction * diag) distinct.push_back(p);
+  if (distinct.size() < 3) {
+    why = std::to_string(distinct.size()) + " distinct points";
+    return true;
+  }
+  // The line through the first point and the point farthest from it.
+  const Vec2 a = distinct.front();
+  Vec2 b = a;
+  for (const Vec2& p : distinct)
+    if ((p - a).norm() > (b - a).norm()) b = p;
+  const Vec2 d = (b - a).normalized();
+  double off = 0.0;
+  for (const Vec2& p : distinct) off = std::max(off, std::abs(d.x() * (p - a).y() - d.y() * (p - a).x()));
+  if (off <= kCollinearFraction * diag) {
+    why = "collinear (largest distance from the line " + std::to_string(off) + ")";
+    return true;
+  }
+  return false;
+}
+
+bool raisedTolerance(const FitResult& r) {
+  for (const std::string& w : r.warnings)
+    if (w.find("tolerance raised") != std::string::npos) return true;
+  return false;
+}
+
+std::string warningsOf(const FitResult& r) {
+  std::string s;
+  for (const std::string& w : r.warnings) s += "\n    warning: " + w;
+  return s.empty() ? "\n    (no warnings)" : s;
+}
+
+// What a file's strokes must show beyond fitting: closure, corners.
+struct Expectation {
+  bool closed = false;
+  int min_corners = 0;
+};
+
+Expectation expectationFor(const std::string& dataset, const fs::path& file) {
+  Expectation e;
+  const std::string stem = file.stem().string();
+  if (dataset == "glyphs") e.closed = true;
+  if (dataset == "dollar1") {
+    if (stem == "circle") e.closed = true;
+    if (stem == "caret" || stem == "v" || stem == "triangle" || stem == "star") e.min_corners = 1;
+    if (stem == "rectangle") e.min_corners = 3;
+  }
+  return e;
+}
+
+class FitDataTest : public ::testing::TestWithParam<DataSet> {};
+
+TEST_P(FitDataTest, EveryStrokeFits) {
+  const DataSet& set = GetParam();
+  const std::vector<fs::path> files = filesOf(kData / set.folder, set.extension);
+  ASSERT_FALSE(files.empty()) << "no " << set.extension << " files under " << (kData / set.folder);
+
+  int strokes = 0, fitted = 0, rejected = 0, raised = 0, failed = 0;
+  double worst_ratio = 0.0;
+  std::string worst_where;
+  for (const fs::path& file : files) {
+    const std::string rel = fs::relative(file, kData).string();
+    std::vector<Stroke> all;
+    try {
+      all = readStrokes(file);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << rel << ": readStrokes threw: " << e.what();
+      ++failed;
+      continue;
+    }
+    const Expectation expect = expectationFor(set.name, file);
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      ++strokes;
+      const std::string where = rel + " stroke " + std::to_string(k) + " (" + std::to_string(all[k].samples.size()) + " points)";
+      std::string why;
+      const bool bad_input = degenerate(all[k], why);
+      FitResult r;
+      try {
+        r = fitStroke(all[k]);
+      } catch (const StrokeError& e) {
+        if (bad_input) {
+          ++rejected;
+        } else {
+          ++failed;
+          ADD_FAILURE() << where << ": StrokeError on a fittable stroke: " << e.what();
+        }
+        continue;
+      } catch (const std::exception& e) {
+        ++failed;
+        ADD_FAILURE() << where << ": fitStroke threw something other than StrokeError: " << e.what()
+                      << (bad_input ? " (the stroke is degenerate: " + why + ")" : std::string());
+        continue;
+      }
+      if (bad_input) {
+        ++failed;
+        ADD_FAILURE() << where << ": degenerate input (" << why << ") fitted without StrokeError";
+        continue;
+      }
+      ++fitted;
+      if (raisedTolerance(r)) ++raised;
+      const double ratio = r.quality.max_dev / r.tolerance;
+      if (!(ratio <= worst_ratio)) worst_ratio = ratio, worst_where = where;
+
+      const int failures_before = ::testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count();
+      EXPECT_FALSE(r.curve.pieces.empty()) << where << ": empty curve";
+      EXPECT_LE(r.quality.max_dev, r.tolerance * (1.0 + kDeviationAllowance))
+          << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
+      EXPECT_LT(r.quality.g1_gap, kG1Threshold) << where << ": g1 gap";
+      EXPECT_LT(r.quality.g2_gap, kG2Threshold) << where << ": g2 gap";
+      if (expect.closed) EXPECT_TRUE(r.curve.closed) << where << ": should be closed";
+      if (expect.min_corners > 0) {
+        EXPECT_GE(r.quality.corners, expect.min_corners) << where << ": corners";
+      }
+      const int failures_after = ::testing::UnitTest::GetInstance()->current_test_info()->result()->total_part_count();
+      if (failures_after != failures_before) {
+        ++failed;
+        std::printf("[ failure  ] %s: %d segments, closed %d, corners %d, max_dev %.4g, tolerance %.4g, g1 %.2g, g2 %.2g%s\n",
+                    where.c_str(), r.quality.segments, r.curve.closed ? 1 : 0, r.quality.corners, r.quality.max_dev,
+                    r.tolerance, r.quality.g1_gap, r.quality.g2_gap, warningsOf(r).c_str());
+      }
+    }
+  }
+  std::printf("[ data set ] %s: %zu files, %d strokes: %d fitted, %d rejected as degenerate (StrokeError), "
+              "%d with failures; tolerance raised to the noise floor in %d; worst max_dev/tolerance %.4f (%s)\n",
+              set.name, files.size(), strokes, fitted, rejected, failed, raised, worst_ratio, worst_where.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, FitDataTest, ::testing::ValuesIn(kDataSets),
+                         [](const ::testing::TestParamInfo<DataSet>& info) { return std::string(info.param.name); });
+
+// No file of a fittable kind lies outside the data sets above (new data is not skipped
+// silently), and the sets hold what SOURCES.md says they hold.
+TEST(FitDataFiles, EveryFileBelongsToADataSet) {
+  std::set<fs::path> covered;
+  for (const DataSet& set : kDataSets)
+    for (const fs::path& f : filesOf(kData / set.folder, set.extension)) covered.insert(f);
+  for (const char* top : {"strokes", "curves"})
+    for (const char* ext : {".csv", ".dat", ".svg"})
+      for (const fs::path& f : filesOf(kData / top, ext))
+        EXPECT_TRUE(covered.count(f)) << f << " is in no data set of this test";
+  EXPECT_EQ(filesOf(kData / "strokes/dollar1_unistroke_s01_pilot", ".csv").size(), 48u);  // 16 gestures x 3 speeds
+  EXPECT_EQ(filesOf(kData / "curves/airfoils", ".dat").size(), 4u);
+  EXPECT_EQ(filesOf(kData / "curves/kanjivg", ".svg").size(), 3u);
+}
+
+}  // namespace
+}  // namespace la

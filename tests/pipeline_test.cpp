@@ -1,0 +1,695 @@
+// Tests of the whole fitting pipeline (fitting/pipeline.h, fitStroke) against
+// independent truth.
+//
+// The truth is a G2 chain of 1 to 5 LA segments with known alphas and joints, built
+// here segment by segment from the intrinsic form (core/la_segment.h): segment k + 1
+// starts at the end of segment k with its tangent angle and its end curvature. Every
+// joint is one the fitter can see: a curvature extremum (|kappa| increases on one side
+// and decreases on the other) or an inflection (kappa = 0 on both sides, alpha < 0 on
+// both, opposite signs). The chain is sampled like a tablet would: uniformly in arc
+// length at unit spacing (LaSegment::sample with integer lengths), plus Gaussian noise
+// of 0.1% of the bounding-box diagonal from std::mt19937 (seed stated per case;
+// std::normal_distribution of libstdc++).
+//
+// Checks (the thresholds come from the issue unless a comment says otherwise):
+//  - deviation from the noise-free truth, both ways: the fitted curve (densely sampled)
+//    to the truth curve, and the truth's samples to the fitted curve, at most
+//    FitResult::tolerance (the tolerance the pipeline used: the default 0.5% of the
+//    diagonal, or the points' noise floor if that is larger; how often the floor was
+//    used is printed at the end);
+//  - segment count: the truth's, or at most one more;
+//  - alpha of every fitted segment within 0.3 of the alpha of the truth segment its
+//    midpoint falls on, when that truth segment has at least 100 samples (the error
+//    distribution is printed at the end);
+//  - g1 gap below 1e-9 rad and g2 gap below 1e-6 (G2 on, the default Newton solve);
+//  - the same under rotation (1.1 rad), scaling (0.01 and 100) and reversal of the
+//    points: deviation from the transformed truth within the fit's tolerance (so
+//    relative to the diagonal), the same segment count as the untransformed fit, gaps
+//    below the thresholds;
+//  - the G2 methods: bisection and Newton both reach g2 < 1e-6 with g1 < 1e-9; with G2
+//    off only g1 < 1e-9 holds (and the curvature gaps are really left open).
+
+#include "fitting/pipeline.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/curve.h"
+#include "core/la_segment.h"
+#include "fitting/quality.h"
+
+namespace la {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// From the issue.
+constexpr double kNoiseFraction = 1e-3;       // noise standard deviation / diagonal
+constexpr double kG1Threshold = 1e-9;         // radians
+constexpr double kG2Threshold = 1e-6;         // relative gap (DESIGN.md section 6)
+constexpr double kAlphaTolerance = 0.3;
+constexpr std::size_t kAlphaMinSamples = 100;  // truth segments shorter than this are not compared
+constexpr int kMaxExtraSegments = 1;
+
+// Ours. The fitted curve is sampled for the deviation check every kDenseStepFraction
+// of the diagonal (0.1%: the noise level, ten times finer than any tolerance here).
+constexpr double kDenseStepFraction = 1e-3;
+// Random chains: turning per segment 0.4..1.7 rad (the issue: 0.3..2.0, well below pi;
+// we stay 0.3 inside the pipeline's max_piece_turning = 2.0 so that noise in the
+// smoothed turning does not split a segment by itself), lengths 100..400 units (so
+// every segment has >= 100 samples at unit spacing).
+constexpr double kMinTurning = 0.4, kMaxTurning = 1.7;
+constexpr double kMinLength = 100.0, kMaxLength = 400.0;
+// Curvature ratio across an extremum segment: large enough that the extremum is far
+// above the segmentation's significance (8% of the largest |kappa|).
+constexpr double kMinRatio = 2.5, kMaxRatio = 4.0;
+// A generated stroke must not look closed or self-approaching (the clean-up would cut
+// it or close it: close_fraction 6% of the diagonal, crossing reach twice that), nor
+// have curvature so high that the corner detector (1 rad within 3% of the length)
+// could fire: the truth has neither corners nor a closure.
+constexpr double kMinEndGapFraction = 0.3;
+constexpr double kMinSelfGapFraction = 0.06;
+constexpr double kMaxTurnInCornerWindow = 0.6;  // radians within 3% of the stroke length
+
+// ---------------------------------------------------------------------------------
+// Truth chains.
+
+struct SegmentSpec {
+  double alpha, length, kappa_start, kappa_end;  // signed curvatures
+};
+
+struct Truth {
+  std::string name;
+  unsigned seed = 0;                    // of the chain (random cases) and of the noise
+  Curve curve;                          // noise-free
+  std::vector<Vec2> samples;            // unit spacing in arc length, noise-free
+  std::vector<int> segment_of;          // truth segment of each sample
+  std::vector<std::size_t> samples_per_segment;
+  double diagonal = 0.0;
+  std::vector<Vec2> noisy;              // the stroke given to the fitter
+};
+
+Curve buildChain(const std::vector<SegmentSpec>& specs, Vec2 start, double theta0) {
+  Curve curve;
+  for (const SegmentSpec& s : specs) {
+    const LaSegment seg = std::isinf(s.alpha) ? LaSegment::arc(s.length, start, theta0, s.kappa_start)
+                                              : LaSegment(s.alpha, s.length, start, theta0, s.kappa_start, s.kappa_end);
+    start = seg.end(1e-14);
+    theta0 = seg.theta(seg.length());
+    curve.pieces.push_back({seg, false});
+  }
+  return curve;
+}
+
+double boxDiagonal(const std::vector<Vec2>& p) {
+  Vec2 lo = p.front(), hi = p.front();
+  for (const Vec2& q : p) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  return (hi - lo).norm();
+}
+
+// Samples at unit spacing (segment lengths are integers), the joints once.
+void sampleTruth(Truth& t) {
+  t.samples.clear();
+  t.segment_of.clear();
+  t.samples_per_segment.assign(t.curve.pieces.size(), 0);
+  for (std::size_t k = 0; k < t.curve.pieces.size(); ++k) {
+    const LaSegment& seg = t.curve.pieces[k].segment;
+    const int n = static_cast<int>(std::lround(seg.length())) + 1;
+    const CurveSamples smp = seg.sample(std::max(n, 2));
+    for (std::size_t i = (k == 0 ? 0 : 1); i < smp.size(); ++i) {
+      t.samples.push_back(smp.point[i]);
+      t.segment_of.push_back(static_cast<int>(k));
+    }
+    t.samples_per_segment[k] = smp.size();
+  }
+  t.diagonal = boxDiagonal(t.samples);
+}
+
+void addNoise(Truth& t) {
+  std::mt19937 rng(t.seed);
+  std::normal_distribution<double> noise(0.0, kNoiseFraction * t.diagonal);
+  t.noisy.clear();
+  for (const Vec2& p : t.samples) t.noisy.push_back(p + Vec2(noise(rng), noise(rng)));
+}
+
+// The generated stroke must be a fair open test: ends apart, no near self-approach,
+// curvature below what the corner detector would take for a corner.
+bool acceptable(const Truth& t) {
+  const auto& p = t.samples;
+  const double diag = t.diagonal;
+  if ((p.front() - p.back()).norm() < kMinEndGapFraction * diag) return false;
+  const std::size_t far = p.size() / 4;  // samples this far apart along the stroke must stay apart
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::size_t j = i + far; j < p.size(); ++j)
+      if ((p[i] - p[j]).norm() < kMinSelfGapFraction * diag) return false;
+  double kmax = 0.0, total = 0.0;
+  for (const CurvePiece& piece : t.curve.pieces) {
+    kmax = std::max({kmax, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
+    total += piece.segment.length();
+  }
+  return kmax * 0.03 * total <= kMaxTurnInCornerWindow;
+}
+
+// A random chain of n segments whose curvature alternates between increasing and
+// decreasing |kappa|; a decreasing segment that is not the last ends in an inflection
+// with probability 1/2 (then it and the next segment get alpha in [-2, -0.4]: alpha < 0
+// is required, and alpha near 0- puts all the turning at the far end).
+std::vector<SegmentSpec> randomSpecs(int n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto uni = [&](double a, double b) { return a + (b - a) * u01(rng); };
+  for (;;) {
+    std::vector<SegmentSpec> specs;
+    double sign = u01(rng) < 0.5 ? 1.0 : -1.0;
+    bool increasing = u01(rng) < 0.5;
+    double k_prev = uni(0.003, 0.01);  // |kappa| at the start of the segment
+    bool ok = true;
+    for (int k = 0; k < n && ok; ++k) {
+      const bool from_zero = k_prev == 0.0;
+      const bool to_inflection = !increasing && k + 1 < n && u01(rng) < 0.5;
+      ok = false;
+      for (int attempt = 0; attempt < 200 && !ok; ++attempt) {
+        const double alpha = (from_zero || to_inflection) ? uni(-2.0, -0.4) : uni(-2.0, 3.0);
+        double k_end;
+        if (to_inflection) k_end = 0.0;
+        else if (from_zero) k_end = uni(0.004, 0.015);
+        else if (increasing) k_end = k_prev * uni(kMinRatio, kMaxRatio);
+        else k_end = k_prev / uni(kMinRatio, kMaxRatio);
+        const double turning = uni(kMinTurning, kMaxTurning);
+        const double k0 = from_zero ? 0.0 : sign * k_prev, k1 = to_inflection ? 0.0 : sign * k_end;  // no -0.0
+        const double unit = std::abs(LaSegment(alpha, 1.0, Vec2::Zero(), 0.0, k0, k1).turning());
+        const double length = std::round(turning / unit);
+        if (length < kMinLength || length > kMaxLength) continue;
+        const double real_turning = unit * length;
+        if (real_turning < kMinTurning - 0.05 || real_turning > kMaxTurning + 0.05) continue;
+        specs.push_back({alpha, length, k0, k1});
+        k_prev = k_end;
+        ok = true;
+      }
+      if (to_inflection) sign = -sign;
+      increasing = !increasing;
+    }
+    if (ok) return specs;
+  }
+}
+
+Truth randomTruth(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  for (int attempt = 0;; ++attempt) {
+    if (attempt > 10000) throw std::runtime_error("no acceptable chain for seed " + std::to_string(seed));
+    Truth t;
+    t.seed = seed;
+    t.name = "chain" + std::to_string(n) + "_seed" + std::to_string(seed);
+    const std::vector<SegmentSpec> specs = randomSpecs(n, rng);
+    t.curve = buildChain(specs, Vec2(100.0 * u01(rng), 100.0 * u01(rng)), 2.0 * kPi * u01(rng));
+    sampleTruth(t);
+    if (!acceptable(t)) continue;
+    addNoise(t);
+    return t;
+  }
+}
+
+Truth fixedTruth(const std::string& name, const std::vector<SegmentSpec>& specs, unsigned seed) {
+  Truth t;
+  t.name = name;
+  t.seed = seed;
+  t.curve = buildChain(specs, Vec2(20.0, -30.0), 0.3);
+  sampleTruth(t);
+  addNoise(t);
+  return t;
+}
+
+// The cases: random chains of 1..5 segments, 5 seeds each, and three classics.
+constexpr int kSeedsPerSize = 5;
+constexpr int kMaxSegments = 5;
+constexpr int kRandomCases = kSeedsPerSize * kMaxSegments;
+constexpr int kCaseCount = kRandomCases + 3;
+
+Truth makeCase(int index) {
+  if (index < kRandomCases) {
+    const int n = 1 + index / kSeedsPerSize;
+    const unsigned seed = 1000u * n + index % kSeedsPerSize;
+    return randomTruth(n, seed);
+  }
+  switch (index - kRandomCases) {
+    case 0:  // a circular arc: radius 200, 1.5 rad
+      return fixedTruth("circle_arc", {{std::numeric_limits<double>::infinity(), 300.0, 0.005, 0.005}}, 71);
+    case 1:  // a clothoid through an inflection: kappa 0.008 -> 0 -> -0.008, 1.2 rad each side
+      return fixedTruth("clothoid_inflection", {{-1.0, 300.0, 0.008, 0.0}, {-1.0, 300.0, 0.0, -0.008}}, 72);
+    default:  // a logarithmic spiral, rho 250 -> 83.3 (turning ln(3) * 250 / 166.7 = 1.65 rad)
+      return fixedTruth("log_spiral", {{1.0, 167.0, 0.004, 0.012}}, 73);
+  }
+}
+
+const Truth& truthCase(int index) {
+  static std::map<int, Truth> cache;
+  auto it = cache.find(index);
+  if (it == cache.end()) it = cache.emplace(index, makeCase(index)).first;
+  return it->second;
+}
+
+// ---------------------------------------------------------------------------------
+// Transforms of the stroke (and of the truth with it).
+
+enum class Transform { kNone, kRotate, kScaleSmall, kScaleLarge, kReverse };
+constexpr double kRotation = 1.1;
+
+const char* toName(Transform t) {
+  switch (t) {
+    case Transform::kNone: return "plain";
+    case Transform::kRotate: return "rotated";
+    case Transform::kScaleSmall: return "scaled0_01";
+    case Transform::kScaleLarge: return "scaled100";
+    case Transform::kReverse: return "reversed";
+  }
+  return "?";
+}
+
+struct Similarity {
+  double angle = 0.0, scale = 1.0;
+  Vec2 apply(const Vec2& p) const {
+    const double c = std::cos(angle), s = std::sin(angle);
+    return scale * Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+  }
+};
+
+Similarity similarityOf(Transform t) {
+  switch (t) {
+    case Transform::kRotate: return {kRotation, 1.0};
+    case Transform::kScaleSmall: return {0.0, 0.01};
+    case Transform::kScaleLarge: return {0.0, 100.0};
+    default: return {};
+  }
+}
+
+Truth transformed(const Truth& in, Transform t) {
+  Truth out = in;
+  if (t == Transform::kNone) return out;
+  if (t == Transform::kReverse) {
+    out.curve.pieces.clear();
+    for (auto it = in.curve.pieces.rbegin(); it != in.curve.pieces.rend(); ++it)
+      out.curve.pieces.push_back({it->segment.reversed(), false});
+    std::reverse(out.samples.begin(), out.samples.end());
+    std::reverse(out.segment_of.begin(), out.segment_of.end());
+    for (int& k : out.segment_of) k = static_cast<int>(in.curve.pieces.size()) - 1 - k;
+    std::reverse(out.samples_per_segment.begin(), out.samples_per_segment.end());
+    std::reverse(out.noisy.begin(), out.noisy.end());
+    return out;
+  }
+  const Similarity sim = similarityOf(t);
+  out.curve.pieces.clear();
+  for (const CurvePiece& piece : in.curve.pieces) {
+    const LaSegment& s = piece.segment;
+    const LaSegment moved = std::isinf(s.alpha())
+                                ? LaSegment::arc(s.length() * sim.scale, sim.apply(s.start()), s.theta0() + sim.angle,
+                                                 s.kappaStart() / sim.scale)
+                                : LaSegment(s.alpha(), s.length() * sim.scale, sim.apply(s.start()), s.theta0() + sim.angle,
+                                            s.kappaStart() / sim.scale, s.kappaEnd() / sim.scale);
+    out.curve.pieces.push_back({moved, false});
+  }
+  for (Vec2& p : out.samples) p = sim.apply(p);
+  for (Vec2& p : out.noisy) p = sim.apply(p);
+  out.diagonal = boxDiagonal(out.samples);
+  return out;
+}
+
+Stroke strokeOf(const std::vector<Vec2>& points) {
+  Stroke stroke;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    StrokeSample s;
+    s.p = points[i];
+    s.t = 8.0 * static_cast<double>(i);  // a 125 Hz tablet
+    stroke.samples.push_back(s);
+  }
+  return stroke;
+}
+
+// ---------------------------------------------------------------------------------
+// Measurements.
+
+// Dense samples of a curve, with the fitted segment and arc-length fraction of each.
+struct Dense {
+  std::vector<Vec2> point;
+  std::vector<int> segment;
+  std::vector<double> fraction;
+};
+
+Dense denseSamples(const Curve& curve, double step) {
+  Dense out;
+  for (std::size_t k = 0; k < curve.pieces.size(); ++k) {
+    const LaSegment& seg = curve.pieces[k].segment;
+    const int n = std::max(8, static_cast<int>(std::ceil(seg.length() / step)) + 1);
+    const CurveSamples smp = seg.sample(n);
+    for (std::size_t i = 0; i < smp.size(); ++i) {
+      out.point.push_back(smp.point[i]);
+      out.segment.push_back(static_cast<int>(k));
+      out.fraction.push_back(smp.s[i] / seg.length());
+    }
+  }
+  return out;
+}
+
+// Largest value and where it is; infinite if any value is not finite.
+std::pair<double, std::size_t> maxOf(const std::vector<double>& v) {
+  double m = 0.0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) return {std::numeric_limits<double>::infinity(), i};
+    if (v[i] > m) m = v[i], at = i;
+  }
+  return {m, at};
+}
+
+// Both-way deviation between the fitted curve and the noise-free truth, and where the
+// largest of each is (fitted segment and fraction of its length; truth sample index).
+struct Deviation {
+  double fit_to_truth = 0.0, truth_to_fit = 0.0;
+  int worst_segment = -1;
+  double worst_fraction = 0.0;
+  std::size_t worst_truth_sample = 0, truth_samples = 0;
+  double max() const { return std::max(fit_to_truth, truth_to_fit); }
+  std::string where() const {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "fitted->truth worst at fitted segment %d, %.2f of its length; truth->fitted worst at truth sample %zu of %zu",
+                  worst_segment, worst_fraction, worst_truth_sample, truth_samples);
+    return buf;
+  }
+};
+
+Deviation deviationFromTruth(const Curve& fitted, const Truth& truth) {
+  Deviation d;
+  if (fitted.pieces.empty()) {
+    d.fit_to_truth = d.truth_to_fit = std::numeric_limits<double>::infinity();
+    return d;
+  }
+  const Dense dense = denseSamples(fitted, kDenseStepFraction * truth.diagonal);
+  const auto [a, at_a] = maxOf(distancesToCurve(truth.curve, dense.point, truth.diagonal));
+  const auto [b, at_b] = maxOf(distancesToCurve(fitted, truth.samples, truth.diagonal));
+  d.fit_to_truth = a;
+  d.truth_to_fit = b;
+  d.worst_segment = dense.segment[at_a];
+  d.worst_fraction = dense.fraction[at_a];
+  d.worst_truth_sample = at_b;
+  d.truth_samples = truth.samples.size();
+  return d;
+}
+
+// The truth segment under the midpoint of each fitted segment (nearest truth sample).
+std::vector<int> matchSegments(const Curve& fitted, const Truth& truth) {
+  std::vector<int> match;
+  for (const CurvePiece& piece : fitted.pieces) {
+    const Vec2 mid = piece.segment.position(0.5 * piece.segment.length());
+    std::size_t best = 0;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < truth.samples.size(); ++i) {
+      const double d = (truth.samples[i] - mid).squaredNorm();
+      if (d < best_d) best_d = d, best = i;
+    }
+    match.push_back(truth.segment_of[best]);
+  }
+  return match;
+}
+
+std::string describeTruth(const Truth& t) {
+  std::string s = t.name + " (seed " + std::to_string(t.seed) + ", diagonal " + std::to_string(t.diagonal) + "):";
+  for (const CurvePiece& p : t.curve.pieces) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " [alpha %.3g L %.0f kappa %.4g->%.4g turn %.2f]", p.segment.alpha(),
+                  p.segment.length(), p.segment.kappaStart(), p.segment.kappaEnd(), p.segment.turning());
+    s += buf;
+  }
+  return s;
+}
+
+std::string describeFit(const FitResult& r) {
+  std::string s = "fit: " + std::to_string(r.curve.pieces.size()) + " segments, tolerance " + std::to_string(r.tolerance);
+  for (const CurvePiece& p : r.curve.pieces) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, " [alpha %.3g L %.4g kappa %.4g->%.4g]", p.segment.alpha(), p.segment.length(),
+                  p.segment.kappaStart(), p.segment.kappaEnd());
+    s += buf;
+  }
+  for (const std::string& w : r.warnings) s += "\n  warning: " + w;
+  return s;
+}
+
+// ---------------------------------------------------------------------------------
+// Statistics over the whole run, printed once at the end.
+
+struct RunStats {
+  int fits = 0, tolerance_raised = 0;
+  std::vector<double> alpha_errors;
+  std::vector<double> deviation_ratios;  // max deviation from truth / tolerance
+};
+RunStats& stats() {
+  static RunStats s;
+  return s;
+}
+
+class StatsPrinter : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    RunStats& s = stats();
+    std::printf("[ stats    ] fits against truth: %d; tolerance raised to the noise floor in %d\n", s.fits,
+                s.tolerance_raised);
+    auto quantiles = [](std::vector<double> v, const char* what) {
+      if (v.empty()) return;
+      std::sort(v.begin(), v.end());
+      auto q = [&](double f) { return v[std::min(v.size() - 1, static_cast<std::size_t>(f * (v.size() - 1) + 0.5))]; };
+      std::printf("[ stats    ] %s: n %zu, median %.3g, 90%% %.3g, max %.3g\n", what, v.size(), q(0.5), q(0.9),
+                  v.back());
+    };
+    quantiles(s.alpha_errors, "|alpha - truth| (segments with >= 100 samples)");
+    std::size_t over = std::count_if(s.alpha_errors.begin(), s.alpha_errors.end(), [](double e) { return !(e <= kAlphaTolerance); });
+    if (!s.alpha_errors.empty()) std::printf("[ stats    ] alpha errors above %.2g: %zu\n", kAlphaTolerance, over);
+    quantiles(s.deviation_ratios, "max deviation from truth / tolerance");
+  }
+};
+[[maybe_unused]] ::testing::Environment* const kStatsPrinter = ::testing::AddGlobalTestEnvironment(new StatsPrinter);
+
+bool raisedTolerance(const FitResult& r) {
+  for (const std::string& w : r.warnings)
+    if (w.find("tolerance raised") != std::string::npos) return true;
+  return false;
+}
+
+FitResult fit(const std::vector<Vec2>& points, const FitOptions& options = {}) {
+  FitResult r = fitStroke(strokeOf(points), options);
+  ++stats().fits;
+  if (raisedTolerance(r)) ++stats().tolerance_raised;
+  return r;
+}
+
+void expectGaps(const FitResult& r) {
+  EXPECT_LT(r.quality.g1_gap, kG1Threshold) << "g1 gap (rad)";
+  EXPECT_LT(r.quality.g2_gap, kG2Threshold) << "g2 gap (relative)";
+}
+
+void expectNoCornersOpen(const FitResult& r) {
+  EXPECT_FALSE(r.curve.closed) << "an open truth stroke was closed";
+  EXPECT_EQ(r.cleaned.corners.size(), 0u) << "corners found on a smooth truth stroke";
+  EXPECT_EQ(r.cleaned.trimmed_start + r.cleaned.trimmed_end, 0u)
+      << "hooks trimmed from a smooth truth stroke (start " << r.cleaned.trimmed_start << ", end "
+      << r.cleaned.trimmed_end << ")";
+}
+
+// Where the fitted curve's ends are relative to the stroke's end points (a dangling end
+// is a typical source of deviation: the points can be close to a curve that runs on).
+std::string describeEnds(const FitResult& r, const Truth& truth) {
+  if (r.curve.pieces.empty()) return "";
+  const LaSegment& first = r.curve.pieces.front().segment;
+  const LaSegment& last = r.curve.pieces.back().segment;
+  const Vec2 a = first.start(), b = last.end();
+  auto along = [](const Vec2& from, const Vec2& to, double theta) { return unitVector(theta).dot(to - from); };
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "fitted start: %.3g from the first input point, %.3g from the truth start (%.3g along the truth tangent); "
+                "fitted end: %.3g from the last input point, %.3g from the truth end (%.3g along the truth tangent)",
+                (a - truth.noisy.front()).norm(), (a - truth.samples.front()).norm(),
+                along(truth.samples.front(), a, truth.curve.pieces.front().segment.theta0()),
+                (b - truth.noisy.back()).norm(), (b - truth.samples.back()).norm(),
+                along(truth.samples.back(), b,
+                      truth.curve.pieces.back().segment.theta(truth.curve.pieces.back().segment.length())));
+  return buf;
+}
+
+Deviation expectDeviation(const FitResult& r, const Truth& truth) {
+  const Deviation d = deviationFromTruth(r.curve, truth);
+  EXPECT_LE(d.max(), r.tolerance) << "deviation from the noise-free truth: fitted->truth " << d.fit_to_truth
+                                  << ", truth->fitted " << d.truth_to_fit << " (relative to diagonal "
+                                  << d.max() / truth.diagonal << ") > tolerance " << r.tolerance << " ("
+                                  << r.tolerance / truth.diagonal << " of the diagonal)\n" << d.where()
+                                  << "\n" << describeEnds(r, truth);
+  return d;
+}
+
+// ---------------------------------------------------------------------------------
+// The tests.
+
+std::string caseName(int index, Transform transform) {
+  std::string name;
+  if (index < kRandomCases) {
+    name = "chain" + std::to_string(1 + index / kSeedsPerSize) + "_seed" + std::to_string(index % kSeedsPerSize);
+  } else {
+    const char* names[] = {"circle_arc", "clothoid_inflection", "log_spiral"};
+    name = names[index - kRandomCases];
+  }
+  return name + "_" + toName(transform);
+}
+
+using CaseParam = std::tuple<int, Transform>;
+
+class PipelineTruthTest : public ::testing::TestWithParam<CaseParam> {};
+
+TEST_P(PipelineTruthTest, FitsTheTruth) {
+  const auto [index, transform] = GetParam();
+  const Truth& base = truthCase(index);
+  const Truth truth = transformed(base, transform);
+  const FitResult r = fit(truth.noisy);
+  ASSERT_FALSE(r.curve.pieces.empty()) << describeTruth(base) << "\n" << describeFit(r);
+  const Deviation dev = expectDeviation(r, truth);
+  stats().deviation_ratios.push_back(dev.max() / r.tolerance);
+  expectGaps(r);
+  expectNoCornersOpen(r);
+
+  const std::size_t n_truth = truth.curve.pieces.size(), n_fit = r.curve.pieces.size();
+  EXPECT_GE(n_fit, n_truth) << "segment count: truth " << n_truth << ", fitted " << n_fit;
+  EXPECT_LE(n_fit, n_truth + kMaxExtraSegments) << "segment count: truth " << n_truth << ", fitted " << n_fit;
+
+  std::string alphas;
+  if (transform == Transform::kNone) {
+    const std::vector<int> match = matchSegments(r.curve, truth);
+    for (std::size_t i = 0; i < n_fit; ++i) {
+      const LaSegment& truth_seg = truth.curve.pieces[match[i]].segment;
+      if (truth.samples_per_segment[match[i]] < kAlphaMinSamples || std::isinf(truth_seg.alpha())) continue;
+      const double got = r.curve.pieces[i].segment.alpha(), want = truth_seg.alpha();
+      const double err = std::abs(got - want);
+      stats().alpha_errors.push_back(std::isnan(err) ? std::numeric_limits<double>::infinity() : err);
+      char buf[80];
+      std::snprintf(buf, sizeof buf, " %zu->%d:%.2f/%.2f", i, match[i], got, want);
+      alphas += buf;
+      EXPECT_LE(err, kAlphaTolerance) << "alpha of fitted segment " << i << " (piece kind "
+                                      << toString(r.pieces[i].kind) << ", LCG alpha " << r.pieces[i].lcg_alpha
+                                      << ", moved " << r.pieces[i].alpha_moved << "): got " << got
+                                      << ", truth segment " << match[i] << " has " << want;
+    }
+  } else {
+    // Consistency with the untransformed fit.
+    const FitResult plain = fitStroke(strokeOf(base.noisy));
+    EXPECT_EQ(n_fit, plain.curve.pieces.size()) << "segment count changed by the transform " << toName(transform)
+                                                << ": plain fit " << plain.curve.pieces.size() << ", transformed "
+                                                << n_fit << "\nplain " << describeFit(plain);
+  }
+  // One line per case (and the details when something failed), for the report.
+  std::printf("[ case     ] %-28s segments %zu/%zu  dev/tol %.3f  tol/diag %.4f%s  g1 %.1e g2 %.1e  alpha fit/truth%s\n",
+              caseName(index, transform).c_str(), n_fit, n_truth, dev.max() / r.tolerance,
+              r.tolerance / truth.diagonal, raisedTolerance(r) ? " (raised)" : "", r.quality.g1_gap, r.quality.g2_gap,
+              alphas.c_str());
+  if (HasFailure()) std::printf("%s\n%s\n", describeTruth(base).c_str(), describeFit(r).c_str());
+}
+
+std::string caseParamName(const ::testing::TestParamInfo<CaseParam>& info) {
+  const auto [index, transform] = info.param;
+  return caseName(index, transform);
+}
+
+INSTANTIATE_TEST_SUITE_P(Chains, PipelineTruthTest,
+                         ::testing::Combine(::testing::Range(0, kCaseCount),
+                                            ::testing::Values(Transform::kNone, Transform::kRotate,
+                                                              Transform::kScaleSmall, Transform::kScaleLarge,
+                                                              Transform::kReverse)),
+                         caseParamName);
+
+// The truth generator itself: what the cases claim about themselves.
+TEST(PipelineTruthGenerator, ChainsAreG2WithVisibleJoints) {
+  for (int index = 0; index < kCaseCount; ++index) {
+    const Truth& t = truthCase(index);
+    SCOPED_TRACE(describeTruth(t));
+    const auto& pieces = t.curve.pieces;
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const LaSegment& s = pieces[k].segment;
+      EXPECT_GE(t.samples_per_segment[k], kAlphaMinSamples);
+      EXPECT_LT(std::abs(s.turning()), 2.0);
+      if (index < kRandomCases) {
+        EXPECT_GE(s.alpha(), -2.0);
+        EXPECT_LE(s.alpha(), 3.0);
+      }
+      if (k == 0) continue;
+      const LaSegment& a = pieces[k - 1].segment;
+      EXPECT_LT((a.end() - s.start()).norm(), 1e-9 * t.diagonal);
+      EXPECT_LT(std::abs(a.theta(a.length()) - s.theta0()), 1e-12);
+      EXPECT_EQ(a.kappaEnd(), s.kappaStart());
+      // visible joint: an inflection, or |kappa| changes trend
+      const bool inflection = a.kappaEnd() == 0.0;
+      const bool a_up = std::abs(a.kappaEnd()) > std::abs(a.kappaStart());
+      const bool s_up = std::abs(s.kappaEnd()) > std::abs(s.kappaStart());
+      EXPECT_TRUE(inflection || a_up != s_up) << "joint " << k << " is not a curvature extremum";
+      if (inflection) {
+        EXPECT_TRUE(a.alpha() < 0 && s.alpha() < 0 && a.kappaStart() * s.kappaEnd() < 0);
+      }
+    }
+  }
+}
+
+// G2 methods: bisection and Newton both make curvature continuous; off leaves G1 only.
+std::string methodName(int index, G2Method method) {
+  return "chain" + std::to_string(1 + index / kSeedsPerSize) + "_seed" + std::to_string(index % kSeedsPerSize) + "_" +
+         toString(method);
+}
+
+using MethodParam = std::tuple<int, G2Method>;
+class PipelineG2MethodTest : public ::testing::TestWithParam<MethodParam> {};
+
+TEST_P(PipelineG2MethodTest, GapsAsPromised) {
+  const auto [index, method] = GetParam();
+  const Truth& truth = truthCase(index);
+  FitOptions options;
+  options.g2 = method;
+  const FitResult r = fitStroke(strokeOf(truth.noisy), options);
+  ASSERT_FALSE(r.curve.pieces.empty()) << describeTruth(truth) << "\n" << describeFit(r);
+  EXPECT_LT(r.quality.g1_gap, kG1Threshold);
+  if (method == G2Method::kOff) {
+    // Off: a joint other than inflection-to-inflection (kappa 0 both sides by
+    // construction) keeps the curvature jump of two independent segments.
+    bool has_open_joint = false;
+    for (std::size_t i = 1; i < r.pieces.size(); ++i)
+      has_open_joint |= !(r.pieces[i - 1].kind == PieceKind::kInflectionEnd && r.pieces[i].kind == PieceKind::kInflectionStart);
+    if (has_open_joint) {
+      EXPECT_GT(r.quality.g2_gap, kG2Threshold) << "G2 off, yet curvature is continuous";
+    }
+  } else {
+    EXPECT_LT(r.quality.g2_gap, kG2Threshold);
+    EXPECT_TRUE(r.g2.usable()) << "G2 report: " << r.g2.message;
+    expectDeviation(r, truth);
+  }
+  std::printf("[ case     ] %-28s segments %zu  g1 %.1e g2 %.1e  G2 report: %s\n",
+              methodName(index, method).c_str(), r.curve.pieces.size(),
+              r.quality.g1_gap, r.quality.g2_gap, r.g2.message.c_str());
+  if (HasFailure()) std::printf("%s\n%s\n", describeTruth(truth).c_str(), describeFit(r).c_str());
+}
+
+std::string methodCaseName(const ::testing::TestParamInfo<MethodParam>& info) {
+  const auto [index, method] = info.param;
+  return methodName(index, method);
+}
+
+// Chains of 2 to 5 segments (a single segment has no joint).
+INSTANTIATE_TEST_SUITE_P(Chains, PipelineG2MethodTest,
+                         ::testing::Combine(::testing::Range(kSeedsPerSize, kRandomCases),
+                                            ::testing::Values(G2Method::kBisection, G2Method::kNewton,
+                                                              G2Method::kOff)),
+                         methodCaseName);
+
+}  // namespace
+}  // namespace la
