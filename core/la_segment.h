@@ -14,6 +14,7 @@
 // where the integrand is singular. The closed forms are written with log1p/expm1 so
 // that near-circular segments (curvature ratio close to 1) lose no precision.
 
+#include <array>
 #include <vector>
 
 #include "core/geometry.h"
@@ -89,8 +90,10 @@ class LaSegment {
   double logV(double s) const;
   Vec2 integratePositionAdaptive(double s0, double s1, double abs_tol) const;
   // One panel of the sampler; returns false where the series is not accurate enough.
-  bool panelBySeries(double s0, double h, double theta_start, double theta_end,
+  bool panelBySeries(double s0, double h, double theta_start, double theta_end, double kappa_start,
                      const Vec2& tangent_start, Vec2& delta) const;
+  // theta(s) and kappa(s) together (they share the law's logarithm).
+  void thetaKappa(double s, double& theta, double& kappa) const;
 
   double alpha_, length_;
   Vec2 start_;
@@ -104,6 +107,10 @@ class LaSegment {
   double kappa_ref_ = 0.0;
   double v0_ = 1.0, v1_ = 1.0, dv_ = 0.0;  // v at s = 0 and s = L, slope
   double exponent_ = 0.0;  // e = 1 - 1/alpha, power of v in the turning integral
+  // Taylor coefficients g_k of the turning over a panel in the law's local variable
+  // (see panelBySeries); they depend on alpha only.
+  static constexpr int kSeriesTerms = 24;
+  std::array<double, kSeriesTerms + 1> series_{};
   double growth_ = 0.0;    // g of the exponential law
 };
 

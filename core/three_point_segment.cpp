@@ -24,6 +24,11 @@ constexpr double kSingularWidthRatio = 3.0;
 constexpr double kMaxLogRhoChange = 8.0;
 // The exponentials in the law overflow past ~709; keep |alpha m| and |(alpha-1) m| below.
 constexpr double kMaxExponent = 600.0;
+// Panels are built this much narrower than allowed, so the layout stays valid while
+// Newton moves m towards the singular end and is rebuilt less often.
+constexpr double kLayoutMargin = 0.6;
+constexpr int kLogBaseNodes = 24;
+constexpr double kLogBasePanelChange = 12.0;
 
 struct StandardEval {
   Vec2 end = Vec2::Zero();     // E(m)
@@ -42,6 +47,9 @@ class StandardForm {
 
   StandardEval eval(double m) {
     const Law law = lawAt(m);
+    // One panel of fixed nodes (cos/sin reused) when rho is tame in tau; otherwise
+    // the log-base form, whose integrand is smooth however close the branch point is.
+    if (!law.unit_alpha && !singlePanelValid(law)) return evalLogBase(law);
     if (!layoutValid(law)) buildLayout(law);
     double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
     for (std::size_t k = 0; k < tau_.size(); ++k) {
@@ -105,6 +113,45 @@ class StandardForm {
     if (law.unit_alpha) return law.m == 0.0 ? INFINITY : kMaxLogRhoChange / std::abs(law.m);
     return delta * std::min(kSingularWidthRatio, kMaxLogRhoChange / std::abs(law.p));
   }
+  // In l = log b (b = 1 + A tau) the integrals become
+  //   E = theta_d / A  integral_0^{(alpha-1)m} e^{(p+1) l} e^{i theta_d tau(l)} dl,  tau = (e^l - 1)/A,
+  //   dE/dm = theta_d (1+A)/A integral e^{p l} tau e^{i theta_d tau} dl,
+  // an entire integrand: the singularity of b^p at b = 0 is pushed to l = -inf. On each
+  // panel the exponents (and theta) change by at most kLogBasePanelChange, which
+  // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!).
+  StandardEval evalLogBase(const Law& law) const {
+    const double range = (alpha_ - 1.0) * law.m;  // log(1 + A), exactly
+    // d/dl of the exponents is at most |p + 1| (and 1 for tau); of theta, theta_d e^l / |A|.
+    const double rate = std::max({std::abs(law.p + 1.0), std::abs(law.p), 1.0}) +
+                        theta_d_ * std::max(1.0, law.b_end) / std::abs(law.a);
+    const int panels = std::max(1, static_cast<int>(std::ceil(std::abs(range) * rate / kLogBasePanelChange)));
+    const auto& rule = gaussLegendre<kLogBaseNodes>();
+    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
+    for (int j = 0; j < panels; ++j) {
+      for (int k = 0; k < kLogBaseNodes; ++k) {
+        const double l = range * (j + rule.node[k]) / panels;
+        const double tau = std::expm1(l) / law.a;
+        const double w = rule.weight[k] * std::exp(law.p * l);  // rho at the node, times the weight
+        const double wr = w * std::exp(l);                      // rho db = rho e^l dl
+        const double c = std::cos(theta_d_ * tau), sn = std::sin(theta_d_ * tau);
+        ex += wr * c;
+        ey += wr * sn;
+        dx += w * tau * c;
+        dy += w * tau * sn;
+        len += wr;
+      }
+    }
+    const double scale = theta_d_ * range / panels / law.a;  // dl per unit node, and 1/A
+    StandardEval out;
+    out.end = scale * Vec2(ex, ey);
+    out.d_end = scale * law.b_end * Vec2(dx, dy);
+    out.length = scale * len;
+    return out;
+  }
+  bool singlePanelValid(const Law& law) const {
+    return maxWidth(law, law.distance) >= 1.0;
+  }
+
   bool layoutValid(const Law& law) const {
     if (cuts_.empty()) return false;
     for (std::size_t i = 0; i + 1 < cuts_.size(); ++i) {
@@ -123,7 +170,7 @@ class StandardForm {
     cuts_.assign(1, 0.0);
     double x = 0.0;
     while (x < 1.0) {
-      const double w = 0.999 * maxWidth(law, law.distance + x);
+      const double w = kLayoutMargin * maxWidth(law, law.distance + x);
       x = (w >= 1.0 - x || static_cast<int>(cuts_.size()) >= kMaxPanels) ? 1.0 : x + w;
       cuts_.push_back(x);
     }
