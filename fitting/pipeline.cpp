@@ -27,12 +27,12 @@ constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
 constexpr double kStraightTurning = 1e-9;
 // Alpha by least squares: scan points over [min_alpha, max_alpha], golden-section steps
-// after (0.618^12 of one scan step: ~0.005 in alpha), at most this many points per piece
+// after (0.618^8 of two scan steps: ~0.07 in alpha), at most this many points per piece
 // and samples of the segment for the distances.
-constexpr int kAlphaScan = 7;
-constexpr int kAlphaRefinements = 10;
+constexpr int kAlphaScan = 5;
+constexpr int kAlphaRefinements = 8;
 constexpr std::size_t kAlphaPoints = 32;
-constexpr std::size_t kMinPointsForAlphaFit = 8;
+constexpr std::size_t kMinPointsForAlphaFit = 24;
 constexpr int kDeviationSamples = 40;
 // Passes that split pieces which fail (no LA segment) or stray from the points.
 constexpr int kMaxRefinePasses = 8;
@@ -275,6 +275,34 @@ double fitAlphaToPoints(double start, const Vec2& q0, const Vec2& q1, const Vec2
   return std::min(c1, c2) <= best_cost ? refined : best;
 }
 
+// Where to cut a piece that failed: at the spline's curvature zero nearest its middle
+// when it has one (an S-shaped piece whose inflection was dropped as noise: the cut
+// makes it two inflection pieces), else at its middle.
+SplitPoint halvingPoint(const CubicBSpline& spline, double t0, double t1) {
+  constexpr int kSamples = 32;
+  const double mid = 0.5 * (t0 + t1);
+  double best = NAN;
+  double prev_t = t0, prev_k = spline.curvature(spline.wrap(t0));
+  for (int k = 1; k <= kSamples; ++k) {
+    const double t = t0 + (t1 - t0) * k / kSamples, kappa = spline.curvature(spline.wrap(t));
+    if ((kappa < 0.0) != (prev_k < 0.0)) {
+      double a = prev_t, b = t, ka = prev_k;
+      for (int it = 0; it < 40; ++it) {  // bisection on the sign of the curvature
+        const double m = 0.5 * (a + b), km = spline.curvature(spline.wrap(m));
+        if ((km < 0.0) == (ka < 0.0)) a = m, ka = km;
+        else b = m;
+      }
+      const double z = 0.5 * (a + b);
+      const bool inside = std::abs(z - mid) < 0.45 * (t1 - t0);  // not on top of an existing split
+      if (inside && (std::isnan(best) || std::abs(z - mid) < std::abs(best - mid))) best = z;
+    }
+    prev_t = t;
+    prev_k = kappa;
+  }
+  if (!std::isnan(best)) return {spline.wrap(best), SplitKind::kInflection, 0.0};
+  return {spline.wrap(mid), SplitKind::kTurning, spline.curvature(spline.wrap(mid))};
+}
+
 struct PartFit {
   std::vector<LaSegment> segments;
   std::vector<PieceReport> reports;
@@ -318,7 +346,9 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
   out.spline = spline;
 
   t0 = Clock::now();
-  Segmentation seg = segmentSpline(spline, options.segmentation);
+  const auto [t_first, t_last] = std::minmax_element(smooth.parameters.begin(), smooth.parameters.end());
+  Segmentation seg = part.closed ? segmentSpline(spline, options.segmentation)
+                                 : segmentSpline(spline, *t_first, *t_last, options.segmentation);
   timings.segmentation_ms += msSince(t0);
 
   const double period = spline.tMax() - spline.tMin();
@@ -466,10 +496,7 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
       std::vector<SplitPoint> splits;
       for (std::size_t i = 0; i < n; ++i) {
         splits.push_back(seg.splits[i]);
-        if (halve[i]) {
-          const double tm = spline.wrap(0.5 * (reports[i].t0 + reports[i].t1));
-          splits.push_back({tm, SplitKind::kTurning, spline.curvature(tm)});
-        }
+        if (halve[i]) splits.push_back(halvingPoint(spline, reports[i].t0, reports[i].t1));
       }
       if (!seg.closed) splits.push_back(seg.splits.back());
       seg.splits = std::move(splits);
@@ -483,20 +510,24 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
       // the quality figures say so.
       warnings.push_back("part without a full LA chain, straight pieces used where none fits (" +
                          res.report.message + ")");
+      std::vector<PieceReport> kept;
       for (std::size_t i = 0; i < n; ++i) {
         const SegmentSolve s = solvePiece(chain, i);
+        const Vec2 chord = chain.joints[i + 1] - chain.joints[i];
         if (s.report.usable()) {
           res.segments.push_back(*s.segment);
-        } else {
-          const Vec2 chord = chain.joints[i + 1] - chain.joints[i];
+        } else if (chord.norm() > 0.0) {
           res.segments.push_back(LaSegment::arc(chord.norm(), chain.joints[i], angleOf(chord), 0.0));
-          reports[i].alpha = INFINITY;
+        } else {
+          continue;  // two splits on one point: no piece between them
         }
+        kept.push_back(reports[i]);
       }
+      reports = std::move(kept);
     }
     if (!res.report.usable()) warnings.push_back("G2: " + res.report.message);
-    for (std::size_t i = 0; i < n; ++i) {
-      reports[i].alpha = res.segments[i].alpha();  // inflection pieces solved theirs
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+      reports[i].alpha = res.segments[i].alpha();  // inflection pieces solved theirs; lines are inf
     }
     out.segments = std::move(res.segments);
     out.reports = std::move(reports);

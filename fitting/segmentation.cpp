@@ -54,13 +54,13 @@ void simplify(std::vector<Critical>& ext, bool closed, double end0, double end1,
 // knots rather than where the stroke's curvature peaks. Each kept extremum is moved to
 // the vertex of the least-squares parabola through the curvature sampled over a window
 // reaching a third of the way to its neighbours (kept inside the window).
-void relocateExtrema(const CubicBSpline& s, std::vector<Critical>& ext, bool closed) {
+void relocateExtrema(const CubicBSpline& s, std::vector<Critical>& ext, bool closed, double t_begin, double t_end) {
   const double period = s.tMax() - s.tMin();
   const std::size_t n = ext.size();
   std::vector<Critical> moved = ext;
   for (std::size_t i = 0; i < n; ++i) {
-    double left = (i > 0) ? ext[i].t - ext[i - 1].t : (closed && n > 1 ? ext[i].t - ext[n - 1].t + period : ext[i].t - s.tMin());
-    double right = (i + 1 < n) ? ext[i + 1].t - ext[i].t : (closed && n > 1 ? ext[0].t + period - ext[i].t : s.tMax() - ext[i].t);
+    double left = (i > 0) ? ext[i].t - ext[i - 1].t : (closed && n > 1 ? ext[i].t - ext[n - 1].t + period : ext[i].t - t_begin);
+    double right = (i + 1 < n) ? ext[i + 1].t - ext[i].t : (closed && n > 1 ? ext[0].t + period - ext[i].t : t_end - ext[i].t);
     if (closed && n == 1) left = right = 0.5 * period;
     const double half = std::min(left, right) / 3.0;
     if (!(half > 0.0)) continue;
@@ -112,8 +112,16 @@ const char* toString(SplitKind kind) {
 double splineTangentAngle(const CubicBSpline& spline, double t) { return angleOf(spline.evaluate(t, 1)); }
 
 Segmentation segmentSpline(const CubicBSpline& spline, const SegmentationOptions& options) {
+  return segmentSpline(spline, spline.tMin(), spline.tMax(), options);
+}
+
+Segmentation segmentSpline(const CubicBSpline& spline, double t_begin, double t_end, const SegmentationOptions& options) {
   Segmentation out;
   out.closed = spline.isPeriodic();
+  if (out.closed) {
+    t_begin = spline.tMin();
+    t_end = spline.tMax();
+  }
   const double period = spline.tMax() - spline.tMin();
   const auto& knots = spline.knots();
   std::vector<Critical> extrema;
@@ -146,26 +154,30 @@ Segmentation segmentSpline(const CubicBSpline& spline, const SegmentationOptions
                             [&](const Critical& a, const Critical& b) { return b.t - a.t <= 1e-12 * period; }),
                 extrema.end());
   std::sort(zeros.begin(), zeros.end());
+  if (!out.closed) {  // only what lies strictly inside the fitted range
+    std::erase_if(extrema, [&](const Critical& c) { return c.t <= t_begin || c.t >= t_end; });
+    std::erase_if(zeros, [&](double z) { return z <= t_begin || z >= t_end; });
+  }
   double kappa_max = 0.0;
   for (Critical& e : extrema) {
     e.kappa = spline.curvature(e.t);
     kappa_max = std::max(kappa_max, std::abs(e.kappa));
   }
-  const double end0 = spline.curvature(spline.tMin()), end1 = spline.curvature(spline.tMax());
+  const double end0 = spline.curvature(t_begin), end1 = spline.curvature(t_end);
   kappa_max = std::max({kappa_max, std::abs(end0), std::abs(end1)});
   out.extrema_found = static_cast<int>(extrema.size());
   out.inflections_found = static_cast<int>(zeros.size());
 
   simplify(extrema, out.closed, end0, end1, options.significance * kappa_max, options.max_extrema);
-  relocateExtrema(spline, extrema, out.closed);
+  relocateExtrema(spline, extrema, out.closed, t_begin, t_end);
 
   // Boundaries of monotone stretches, then one inflection between two of opposite sign.
   std::vector<Critical> bounds;
-  if (!out.closed) bounds.push_back({spline.tMin(), end0});
+  if (!out.closed) bounds.push_back({t_begin, end0});
   bounds.insert(bounds.end(), extrema.begin(), extrema.end());
-  if (!out.closed) bounds.push_back({spline.tMax(), end1});
+  if (!out.closed) bounds.push_back({t_end, end1});
   std::vector<SplitPoint> splits;
-  if (!out.closed) splits.push_back({spline.tMin(), SplitKind::kEnd, end0});
+  if (!out.closed) splits.push_back({t_begin, SplitKind::kEnd, end0});
   const std::size_t stretches = out.closed ? bounds.size() : bounds.size() - 1;
   for (std::size_t j = 0; j < stretches; ++j) {
     const Critical& a = bounds[j];
@@ -180,7 +192,7 @@ Segmentation segmentSpline(const CubicBSpline& spline, const SegmentationOptions
     if (b.t <= a.t) std::stable_partition(between.begin(), between.end(), [&](double z) { return z > a.t; });
     if (!between.empty()) splits.push_back({between[between.size() / 2], SplitKind::kInflection, 0.0});
   }
-  if (!out.closed) splits.push_back({spline.tMax(), SplitKind::kEnd, end1});
+  if (!out.closed) splits.push_back({t_end, SplitKind::kEnd, end1});
   if (out.closed && splits.empty()) splits.push_back({spline.tMin(), SplitKind::kTurning, spline.curvature(spline.tMin())});
 
   // Cut pieces that turn too much into equal-turning parts.

@@ -49,6 +49,10 @@ struct Segmentation {
 };
 
 Segmentation segmentSpline(const CubicBSpline& spline, const SegmentationOptions& options = {});
+/// The same on the part [t_begin, t_end] of an open spline (where the stroke's points
+/// have their feet, so the curve does not run on past its first and last point).
+Segmentation segmentSpline(const CubicBSpline& spline, double t_begin, double t_end,
+                           const SegmentationOptions& options = {});
 
 /// Tangent angle of the spline (continuous along [t0, t1] when no cusp lies between).
 double splineTangentAngle(const CubicBSpline& spline, double t);

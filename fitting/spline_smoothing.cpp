@@ -4,6 +4,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -90,21 +91,37 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
   return true;
 }
 
-// Newton steps towards the foot point of each X_i; returns per-point distances.
+// Newton steps towards the foot point of each X_i; returns per-point distances. The
+// spline is evaluated from its per-span polynomials (Horner), the hot loop of smoothing.
 void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts, int steps,
                        std::vector<double>& t, std::vector<double>& dist) {
+  const int first = CubicBSpline::kDegree, last = static_cast<int>(spline.control().size()) - 1;
+  std::vector<std::array<Vec2, 4>> poly(last - first + 1);
+  for (int i = first; i <= last; ++i) poly[i - first] = spline.spanPolynomial(i);
+  const auto& knots = spline.knots();
+  auto eval = [&](double ti, Vec2& c0, Vec2& c1, Vec2& c2) {
+    ti = spline.wrap(ti);
+    const int i = spline.span(ti);
+    const double u = ti - knots[i];
+    const auto& c = poly[i - first];
+    c0 = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
+    c1 = c[1] + u * (2.0 * c[2] + 3.0 * u * c[3]);
+    c2 = 2.0 * c[2] + 6.0 * u * c[3];
+  };
   dist.resize(pts.size());
+  Vec2 c0, c1, c2;
   for (std::size_t i = 0; i < pts.size(); ++i) {
     double ti = t[i];
     for (int k = 0; k < steps; ++k) {
-      const auto d = spline.derivatives(ti, 2);
-      const Vec2 r = d[0] - pts[i];
-      const double g = r.dot(d[1]), h = d[1].squaredNorm() + r.dot(d[2]);
+      eval(ti, c0, c1, c2);
+      const Vec2 r = c0 - pts[i];
+      const double g = r.dot(c1), h = c1.squaredNorm() + r.dot(c2);
       if (!(h > 0.0)) break;
       ti = spline.isPeriodic() ? ti - g / h : std::clamp(ti - g / h, spline.tMin(), spline.tMax());
     }
     t[i] = ti;
-    dist[i] = (spline.point(ti) - pts[i]).norm();
+    eval(ti, c0, c1, c2);
+    dist[i] = (c0 - pts[i]).norm();
   }
 }
 

@@ -3,19 +3,27 @@
 // Everything here works on chords over arc-length windows rather than on single
 // steps: tablet and mouse data are quantized to whole pixels, so the direction of one
 // 2-px step is only known to within 45 degrees, while the chord over a window of a few
-// steps is good to a few degrees.
+// steps is good to a few degrees. The window w is corner_window of the stroke length,
+// but at least kWindowNoise times the sampling noise (half the pixel grid on quantized
+// input), and at least 2 samples.
 //
 // The turn at point i over window w:
-//     a = the point at least w of arc (and at least m samples) before i,
-//     b = the point at least w of arc (and at least m samples) after i,
+//     a = the point at least w of arc (and at least 2 samples) before i,
+//     b = the point at least w of arc (and at least 2 samples) after i,
 //     turn_w(i) = |angle between P_i - P_a and P_b - P_i|.
 // On a circular arc of radius rho, turn_w = w / rho (the chords' directions are the
-// tangents at s - w/2 and s + w/2), so halving the window halves the turn; at a corner
-// between straight legs halving the window keeps the turn. A point is sharp when
-// turn_{w/2} >= kSharpRatio * turn_w. Corners (turn_w > corner_min_angle, sharp) and
-// hooks (an end piece meeting the rest at a sharp turn) both use this test, which is
-// what keeps a small loop, a question mark's top or the curl at the end of a brace
-// from being taken for a corner or a hook.
+// tangents at s - w/2 and s + w/2). A hand-drawn corner and a tight smooth bend both
+// turn a lot over one window; what tells them apart is how the turn grows with the
+// window. Over three windows (chords [a2, a], [a, i], [i, b], [b, b2], the turns between
+// them summed) an arc turns 3 turn_w, a corner between straight legs turn_w. A point is
+// sharp when that wide turn is at most kWideRatio * turn_w; near the ends of an open
+// stroke, where three windows do not fit, when the turn over half the window is at
+// least kSharpRatio * turn_w (an arc keeps half of it, a corner all).
+//
+// A corner is a sharp point turning more than corner_min_angle, one index per corner
+// (non-maximum suppression). A hook is a short straight end piece meeting the rest at a
+// sharp turn of more than hook_min_angle. Both tests keep a small loop, a question mark's
+// top or a brace's curl from being taken for a corner or a hook.
 
 #include "fitting/stroke.h"
 
@@ -23,12 +31,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
-#ifdef LAFAIR_STROKE_DEBUG
-#include <cstdio>
-#endif
 
 namespace la {
 namespace {
@@ -55,22 +62,27 @@ constexpr double kMaxOverlapFraction = 0.25;
 /// 7.3% of the diagonal outside it (close_fraction is 6%); open gestures never cross
 /// their start line near the start.
 constexpr double kCrossReach = 2.0;
-/// A seam is smooth if the closing step turns by at most this fraction of
-/// corner_min_angle at either end. At one half, cutting a real corner diagonally (its
-/// turn split between the two ends of the closing step) never looks smooth.
+/// A kinked seam may be moved to a closing step this many close distances long: a
+/// circle missing its start sideways by close_fraction needs a closing step about 3
+/// times as long to meet both ends smoothly.
+constexpr double kSeamReach = 4.0;
+/// The end of a stroke run past its start is beside its head if their directions differ
+/// by less than this.
+constexpr double kSeamParallel = std::numbers::pi / 4.0;
+/// A seam is kinked if the closing step turns by more than this fraction of
+/// corner_min_angle at either end.
 constexpr double kSeamSmoothFraction = 0.5;
 /// A closed stroke's first points within this many median steps of its last point are
 /// dropped (they repeat it, and a very short closing step is noise).
 constexpr double kSeamMergeSteps = 0.5;
-/// Sharpness: over half the window a corner keeps at least this fraction of its turn.
-/// A circular arc keeps 0.5, a corner between straight legs 1.0; hand-drawn corners are
-/// rounded over a few pixels and noisy, and in the $1 rectangle / star / caret / v
-/// strokes their ratios are >= 0.8.
-#ifndef LAFAIR_SHARP
+/// Sharpness (see the top of the file). Over three windows an arc turns 3 times as much
+/// as over one, a corner as much. In the $1 data the corners of rectangles, stars,
+/// triangles, carets, v's, arrows and x's have wide ratios of 0.7-1.7 (rounded corners of
+/// fast strokes the most), the smooth loop tops of the pigtails 1.9-2.4.
+constexpr double kWideRatio = 1.75;
+/// Over half the window a corner keeps its turn, an arc half of it; used where three
+/// windows do not fit. Hand-drawn corners keep 0.7-1.3 of it.
 constexpr double kSharpRatio = 0.7;
-#else
-constexpr double kSharpRatio = LAFAIR_SHARP;
-#endif
 /// A hook is nearly straight: no point of it is farther than this fraction of its chord
 /// from the chord (a circular arc turning 90 degrees has 0.21, one turning 60 degrees 0.13).
 constexpr double kHookStraightness = 0.15;
@@ -200,13 +212,21 @@ class Polyline {
     m_s = arcLengths(p);
     m_length = m_s.empty() ? 0.0 : m_s.back();
     if (closed && m_n > 1) m_length += (p.front() - p.back()).norm();
+    if (closed) {  // arc length at unwrapped indices -n .. 2n-1
+      m_shift = m_n;
+      for (std::ptrdiff_t k = -m_n; k < 2 * m_n; ++k) {
+        const double laps = std::floor(static_cast<double>(k) / static_cast<double>(m_n));
+        m_cumulative.push_back(m_s[static_cast<std::size_t>(wrap(k))] + laps * m_length);
+      }
+    } else {
+      m_cumulative = m_s;
+    }
   }
 
   double length() const { return m_length; }
   std::ptrdiff_t size() const { return m_n; }
   std::ptrdiff_t wrap(std::ptrdiff_t i) const { return m_closed ? ((i % m_n) + m_n) % m_n : i; }
   const Vec2& at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(wrap(i))]; }
-  double step(std::ptrdiff_t i) const { return (at(i + 1) - at(i)).norm(); }
 
   /// Arc length from i to j along the curve (the shorter way round when closed).
   double distance(std::ptrdiff_t i, std::ptrdiff_t j) const {
@@ -218,23 +238,28 @@ class Polyline {
   /// `min_steps` steps are covered. An open polyline stops at its end, a closed one after
   /// half a loop; nullopt if fewer than min_steps steps were possible, or (`whole`) if
   /// the open end came before `length`. The result is not wrapped (on a closed polyline
-  /// it may be negative or >= size()).
+  /// it may be negative or >= size()). Binary search on the arc length: O(log n).
   std::optional<std::ptrdiff_t> walk(std::ptrdiff_t i, int dir, double length, int min_steps,
                                      bool whole = false) const {
-    const std::ptrdiff_t max_steps = m_closed ? (m_n - 1) / 2 : m_n;
-    std::ptrdiff_t j = i;
-    double covered = 0.0;
-    int steps = 0;
-    while (steps < max_steps) {
-      const std::ptrdiff_t next = j + dir;
-      if (!m_closed && (next < 0 || next >= m_n)) break;
-      covered += dir > 0 ? step(j) : step(next);
-      j = next;
-      ++steps;
-      if (covered >= length && steps >= min_steps) return j;
+    const std::ptrdiff_t base = wrap(i);
+    const std::ptrdiff_t max_steps = m_closed ? (m_n - 1) / 2 : (dir > 0 ? m_n - 1 - base : base);
+    if (max_steps < min_steps) return std::nullopt;
+    const double start = arcAt(base);
+    auto covered = [&](std::ptrdiff_t k) { return dir > 0 ? arcAt(base + k) - start : start - arcAt(base - k); };
+    if (covered(max_steps) < length) {
+      if (whole && !m_closed) return std::nullopt;
+      return i + dir * max_steps;
     }
-    if (steps < min_steps || (whole && !m_closed)) return std::nullopt;
-    return j;
+    std::ptrdiff_t lo = min_steps, hi = max_steps;  // the fewest steps covering `length`
+    while (lo < hi) {
+      const std::ptrdiff_t mid = lo + (hi - lo) / 2;
+      if (covered(mid) >= length) {
+        hi = mid;
+      } else {
+        lo = mid + 1;
+      }
+    }
+    return i + dir * lo;
   }
 
   /// turn_w(i) of the file comment, with the window ends.
@@ -249,11 +274,30 @@ class Polyline {
     return Turn{unsignedAngle(at(i) - at(*a), at(*b) - at(i)), *a, *b};
   }
 
+  /// Turning over three windows: the signed turns from chord [a2, a] to [a, i] to
+  /// [i, b] to [b, b2], each chord at least w long, summed (so a small loop does not
+  /// wrap round). A circular arc turns 3 turn_w(i) over it, a corner between straight
+  /// legs turn_w(i).
+  std::optional<double> wideTurn(std::ptrdiff_t i, double w, int min_steps) const {
+    const auto a = walk(i, -1, w, min_steps, true);
+    const auto b = walk(i, +1, w, min_steps, true);
+    if (!a || !b) return std::nullopt;
+    const auto a2 = walk(*a, -1, w, min_steps, true);
+    const auto b2 = walk(*b, +1, w, min_steps, true);
+    if (!a2 || !b2) return std::nullopt;
+    const Vec2 c0 = at(*a) - at(*a2), c1 = at(i) - at(*a), c2 = at(*b) - at(i), c3 = at(*b2) - at(*b);
+    return std::abs(signedAngle(c0, c1) + signedAngle(c1, c2) + signedAngle(c2, c3));
+  }
+
  private:
+  double arcAt(std::ptrdiff_t k) const { return m_cumulative[static_cast<std::size_t>(k + m_shift)]; }
+
   const std::vector<Vec2>& m_p;
   bool m_closed = false;
   std::ptrdiff_t m_n = 0;
-  std::vector<double> m_s;
+  std::vector<double> m_s;          // arc length at each point from point 0
+  std::vector<double> m_cumulative; // the same at unwrapped indices (closed: -n .. 2n-1)
+  std::ptrdiff_t m_shift = 0;
   double m_length = 0.0;
 };
 
@@ -277,10 +321,9 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
     const auto full = line.turn(i, w, kMinSideSamples, true);
     if (!full || full->angle <= options.corner_min_angle) continue;
     const auto half = line.turn(i, 0.5 * w, 1, true);
-#ifdef LAFAIR_STROKE_DEBUG
-    if (half) { const auto dbl = line.turn(i, 2.0 * w, 2, true); std::fprintf(stderr, "    cand i=%td full=%.0f half=%.0f ratio=%.2f double=%.2f%s\n", i, full->angle * 57.3, half->angle * 57.3, half->angle / full->angle, dbl ? dbl->angle / full->angle : -1.0, half->angle < kSharpRatio * full->angle ? " (round)" : ""); }
-#endif
-    if (!half || half->angle < kSharpRatio * full->angle) continue;
+    const auto wide = line.wideTurn(i, w, kMinSideSamples);
+    const bool sharp = wide ? *wide <= kWideRatio * full->angle : (half && half->angle >= kSharpRatio * full->angle);
+    if (!sharp) continue;
     candidates.push_back({i, *full});
   }
   std::sort(candidates.begin(), candidates.end(),
@@ -303,9 +346,6 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
     const bool suppressed = std::any_of(accepted.begin(), accepted.end(), [&](std::ptrdiff_t v) {
       return std::min(line.distance(v, vertex), line.distance(v, c.i)) < w;
     });
-#ifdef LAFAIR_STROKE_DEBUG
-    std::fprintf(stderr, "    nms i=%td vertex=%td a=%td b=%td suppressed=%d\n", c.i, vertex, c.turn.a, c.turn.b, suppressed);
-#endif
     if (!suppressed) accepted.push_back(vertex);
   }
   std::vector<std::size_t> corners(accepted.begin(), accepted.end());
@@ -341,12 +381,9 @@ std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Sca
   for (std::size_t k = 1; k <= max_points && k < p.size() && s[k] <= max_length; ++k) {
     const Vec2 chord = p[k] - p[0];
     const double chord_length = chord.norm();
+    if (chord_length < kHookMinNoise * scales.noise) continue;
     double deviation = 0.0;
     for (std::size_t j = 1; j < k; ++j) deviation = std::max(deviation, lineDistance(p[j], p[0], p[k]));
-#ifdef LAFAIR_STROKE_DEBUG
-    std::fprintf(stderr, "    hook? k=%zu chord=%.1f (min %.1f) dev=%.2f\n", k, chord_length, kHookMinNoise * scales.noise, deviation / chord_length);
-#endif
-    if (chord_length < kHookMinNoise * scales.noise) continue;
     if (deviation > kHookStraightness * chord_length) continue;
     const auto ki = static_cast<std::ptrdiff_t>(k);
     const auto b = line.walk(ki, +1, w, 2);
@@ -356,9 +393,6 @@ std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Sca
     const auto full = line.turn(ki, w, 1);
     const auto half = line.turn(ki, 0.5 * w, 1);
     if (!full || !half) continue;
-#ifdef LAFAIR_STROKE_DEBUG
-    std::fprintf(stderr, "    hook k=%zu s=%.1f turn=%.0f full=%.0f half=%.0f\n", k, s[k], turn * 57.3, full->angle * 57.3, half->angle * 57.3);
-#endif
     if (half->angle < kSharpRatio * full->angle) continue;
     best = k;
     best_turn = turn;
@@ -384,10 +418,11 @@ struct Seam {
 /// Then the seam: leading points within half a median step of the new end are dropped
 /// (they repeat it), and so is a pen-down slip at the start (a spike: a piece that
 /// would be a hook, turning sharply against the closing step too). If the closing step
-/// then meets the stroke at a kink, the pair of
-/// points (one in the last, one in the first kMaxOverlapFraction of the length, at most
-/// kCrossReach * reach apart) with the smoothest closing step is the seam instead, if it
-/// is smooth; otherwise the kink is a real corner and stays.
+/// then meets the stroke at a kink and the stroke ran on past its start (overlap or
+/// crossing), the seam moves to the smoothest closing step within the doubly drawn
+/// region (at most kSeamReach * reach long). A real corner at the seam stays a corner
+/// (the stroke keeps it on one side of the step). A stroke closed by its gap keeps its
+/// seam: there is nothing drawn twice to choose from.
 std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, const CleanupOptions& options) {
   const std::size_t n = p.size();
   if (n < 4) return std::nullopt;
@@ -465,23 +500,40 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     }
     first += spike;
   }
-  const double smooth = kSeamSmoothFraction * options.corner_min_angle;
   const auto in_m = arrival(m);
   const auto out_first = departure(first);
-  if (in_m && out_first && seamTurn(m, *in_m, first, *out_first) > smooth) {
-    // A kinked seam: if another pair of points in the overlap region closes smoothly, cut
-    // there instead (a circle drawn past its start beside it, or starting with a slip).
-    double best = smooth;
+  const double kink = in_m && out_first ? seamTurn(m, *in_m, first, *out_first) : 0.0;
+  if (m + 1 < n && kink > kSeamSmoothFraction * options.corner_min_angle) {
+    // A kinked seam where the stroke ran on past its start: the tail from m on and the
+    // head up to its point nearest the stroke's end were drawn twice, and the seam may be
+    // anywhere in that doubled region. It moves to the pair of points there whose
+    // closing step turns least, if that turns less (a circle drawn past its start beside
+    // it: the step bridges the sideways miss). The doubled points dropped leave a gap for
+    // the fairing to fill. If the tail's end runs along the head (within kSeamParallel),
+    // the region extends by kCrossReach * reach at both ends, room for a gentle bridge; if
+    // not, the start is a corner with no doubled region around it to cut.
+    std::size_t head_end = first;
+    for (std::size_t i = first; i < n && s[i] <= kMaxOverlapFraction * length; ++i) {
+      if ((p[i] - p[n - 1]).norm() < (p[head_end] - p[n - 1]).norm()) head_end = i;
+    }
+    const auto tail_in = arrival(n - 1);
+    const auto head_out = departure(head_end);
+    double head_limit = s[head_end], tail_limit = s[m];
+    if (tail_in && head_out && unsignedAngle(*tail_in, *head_out) < kSeamParallel) {
+      head_limit = std::min(head_limit + kCrossReach * reach, kMaxOverlapFraction * length);
+      tail_limit = std::max(tail_limit - kCrossReach * reach, tail_start);
+    }
+    std::vector<std::optional<Vec2>> out(n);
+    for (std::size_t i = first; i < n && s[i] <= head_limit; ++i) out[i] = departure(i);
+    double best = kink;
     std::optional<Seam> better;
-    for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_start; --j) {
+    for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_limit; --j) {
       const auto in = arrival(j);
       if (!in) continue;
-      for (std::size_t i = 0; i + 3 <= j && s[i] <= kMaxOverlapFraction * length; ++i) {
+      for (std::size_t i = first; s[i] <= head_limit && i + 3 <= j; ++i) {
         const double gap = (p[i] - p[j]).norm();
-        if (gap < merge || gap > kCrossReach * reach) continue;
-        const auto out = departure(i);
-        if (!out) continue;
-        const double turn = seamTurn(j, *in, i, *out);
+        if (gap < merge || gap > kSeamReach * reach || !out[i]) continue;
+        const double turn = seamTurn(j, *in, i, *out[i]);
         if (turn < best) {
           best = turn;
           better = Seam{i, j + 1};

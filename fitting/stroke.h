@@ -10,25 +10,29 @@
 //     outlier_step_factor times the median step, the points before the (last such) jump
 //     are dropped (not with assume_closed). Such a jump is not drawn geometry (MMG stylus
 //     data: a first point 12-33 px away when the steps are 3-5 px, sometimes with a short
-//     slip before the jump), so its length does not count in the hook budget below;
+//     slip before the jump);
 //  3. closed? (detect_closed): the end comes back within close_fraction * diagonal of
-//     the start, or the last part of the stroke passes within that distance of the start
-//     (an overlap, e.g. a circle drawn past its start), in which case everything after the
-//     point nearest the start is cut. assume_closed skips the test (glyph contours, SVG
-//     paths with Z): the stroke is closed whatever its gap;
+//     the start; or the last quarter of the stroke passes within that distance of the
+//     start, or crosses the start's normal line within twice that distance (a circle
+//     drawn past its start), and everything after the point nearest the start (the
+//     crossing) is cut. At the seam, first points that repeat the last one or form a
+//     pen-down slip are dropped, and a kinked seam is moved within the overlap to where
+//     the closing step is smooth, if there is such a place. assume_closed skips the
+//     test (glyph contours, SVG paths with Z): the stroke is closed whatever its gap;
 //  4. hooks (open strokes only): a short straight end piece (<= hook_max_fraction of the
-//     length, <= hook_max_samples samples) that meets the rest at a sharp turn of more
-//     than hook_min_angle is cut.
-//     Directions are chords over an arc-length window, so 1-px quantization does not
-//     trigger it, and a smooth end curl (the tail of a brace) is not a hook. At least 3
-//     points and 70% of the drawn length always remain. After trimming, 3 is tried again;
-//  5. corners (detect_corners): see the options;
-//  6. throws StrokeError if fewer than 3 distinct points remain or they are collinear.
+//     length, <= hook_max_samples samples, longer than the sampling noise) that meets the
+//     rest at a sharp turn of more than hook_min_angle is cut. Directions are chords over
+//     an arc-length window, so 1-px quantization does not trigger it, and a smooth end
+//     curl is not a hook. 70% of the length (not counting an outlier jump) and 3 points
+//     always remain. If a hook was cut, step 3 is tried again;
+//  5. throws StrokeError if fewer than 3 distinct points remain or they are collinear.
+//     (No trimming step removes points if that would leave the rest collinear.);
+//  6. corners (detect_corners): see the options.
 //
 // Closed strokes: `points` do not repeat the first point at the end (the closing step
 // runs from points.back() to points.front()). A closed stroke that has corners is
-// rotated so that its first corner is at index 0 (corners.front() == 0); `source` is
-// rotated with it. Without corners the original start is kept.
+// rotated so that the corner nearest its start is at index 0 (corners.front() == 0);
+// `source` is rotated with it. Without corners the start is kept.
 
 #include <cstddef>
 #include <limits>
@@ -54,9 +58,10 @@ struct StrokeError : std::invalid_argument {
 };
 
 struct CleanupOptions {
-  /// Pen-down outlier: a first step longer than this many median steps is a jump, not
-  /// drawing (0 or less: off). Pen-down first steps are short: in the $1 stylus data they
-  /// are 0.3-1.3 median steps, in the MMG data the outliers are 2.7-11 median steps.
+  /// Pen-down outlier: one of the first two steps longer than this many median steps is a
+  /// jump, not drawing; the points before it go (0 or less: off). Pen-down first steps
+  /// are short: in the $1 stylus data they are 0.3-1.3 median steps, the MMG jumps are
+  /// 3-11 median steps.
   double outlier_step_factor = 3.0;
   /// Hooks: an end piece no longer than this fraction of the stroke length and made of
   /// at most hook_max_samples samples, that turns by more than hook_min_angle against the
@@ -68,12 +73,14 @@ struct CleanupOptions {
   double hook_min_angle = 1.2;  // radians (~70 degrees)
   std::size_t hook_max_samples = 6;
   /// Corners: a point where the stroke turns by more than corner_min_angle within a
-  /// short window (corner_window of the stroke length, at least 2 samples a side) is a
-  /// deliberate corner; the stroke is faired piecewise between corners. The turn must be
-  /// sharp: measured over half the window it must still be most of the turn (a circular
-  /// arc turns half as much over half the window; a corner turns as much), so a small
-  /// circle or a question mark's top is not a corner. One corner gives one index (the
-  /// point farthest from the chord across the window).
+  /// short window (corner_window of the stroke length, at least 2 samples a side, and
+  /// on open strokes the whole window inside the stroke) is a deliberate corner; the
+  /// stroke is faired piecewise between corners. The turn must be sharp: over three
+  /// windows it must not grow much (a circular arc turns 3 times as much, a corner as
+  /// much), so a small circle, a pigtail's loop or a question mark's top is not a corner.
+  /// One corner gives one index (the point farthest from the chord across the window);
+  /// corners closer than one window are one. The window is never shorter than 8 times
+  /// the sampling noise (half a pixel on pixel-quantized input).
   bool detect_corners = true;
   double corner_min_angle = 1.0;  // radians (~57 degrees)
   double corner_window = 0.03;
@@ -90,8 +97,8 @@ struct CleanStroke {
   std::vector<Vec2> points;          // the points to fit, in order
   std::vector<std::size_t> source;   // index of each point in the raw stroke
   /// Indices into `points` of deliberate corners, increasing. Open stroke: interior
-  /// points only (at least 2 samples from either end). Closed stroke: index 0 is allowed,
-  /// and if there is any corner, corners.front() == 0 (the points are rotated so).
+  /// points only (at least 2 samples and one corner window from either end). Closed
+  /// stroke: if there is any corner, corners.front() == 0 (the points are rotated so).
   std::vector<std::size_t> corners;
   bool closed = false;
   std::size_t trimmed_start = 0;     // raw samples removed as a pen-down hook / outlier
