@@ -121,18 +121,24 @@ class StandardForm {
   // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!).
   StandardEval evalLogBase(const Law& law) const {
     const double range = (alpha_ - 1.0) * law.m;  // log(1 + A), exactly
-    // d/dl of the exponents is at most |p + 1| (and 1 for tau); of theta, theta_d e^l / |A|.
-    const double rate = std::max({std::abs(law.p + 1.0), std::abs(law.p), 1.0}) +
-                        theta_d_ * std::max(1.0, law.b_end) / std::abs(law.a);
-    const int panels = std::max(1, static_cast<int>(std::ceil(std::abs(range) * rate / kLogBasePanelChange)));
+    // d/dl of the exponents is at most |p + 1| (and 1 for tau); of theta it is
+    // theta_d e^l / |A|, large only near the top of l's range. Panels are graded from
+    // there: each keeps (exponent rate + theta rate at its top) * width at most
+    // kLogBasePanelChange.
+    const double exp_rate = std::max({std::abs(law.p + 1.0), std::abs(law.p), 1.0});
+    const double lo = std::min(0.0, range), hi = std::max(0.0, range);
     const auto& rule = gaussLegendre<kLogBaseNodes>();
     double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
-    for (int j = 0; j < panels; ++j) {
+    for (double top = hi; top > lo;) {
+      const double theta_rate = theta_d_ * std::exp(top) / std::abs(law.a);
+      const double bottom = std::max(lo, top - kLogBasePanelChange / (exp_rate + theta_rate));
+      const double width = top - bottom;
       for (int k = 0; k < kLogBaseNodes; ++k) {
-        const double l = range * (j + rule.node[k]) / panels;
-        const double tau = std::expm1(l) / law.a;
-        const double w = rule.weight[k] * std::exp(law.p * l);  // rho at the node, times the weight
-        const double wr = w * std::exp(l);                      // rho db = rho e^l dl
+        const double l = bottom + width * rule.node[k];
+        const double em1 = std::expm1(l);
+        const double tau = em1 / law.a;
+        const double w = width * rule.weight[k] * std::exp(law.p * l);  // rho dl at the node
+        const double wr = w * (1.0 + em1);                              // rho db = rho e^l dl
         const double c = std::cos(theta_d_ * tau), sn = std::sin(theta_d_ * tau);
         ex += wr * c;
         ey += wr * sn;
@@ -140,8 +146,9 @@ class StandardForm {
         dy += w * tau * sn;
         len += wr;
       }
+      top = bottom;
     }
-    const double scale = theta_d_ * range / panels / law.a;  // dl per unit node, and 1/A
+    const double scale = theta_d_ * (range > 0.0 ? 1.0 : -1.0) / law.a;  // orientation of dl, and 1/A
     StandardEval out;
     out.end = scale * Vec2(ex, ey);
     out.d_end = scale * law.b_end * Vec2(dx, dy);
@@ -275,14 +282,22 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
 
   StandardForm form(alpha, theta_d);
   StandardEval last;
+  // Newton on the logit of the chord angle, log(phi / (theta_d - phi)): the chord angle
+  // saturates towards its limits like a logistic curve in m, which plain Newton
+  // approaches from one side in many small steps; in the logit it is nearly straight.
+  auto logit = [&](double phi) { return std::log(phi / (theta_d - phi)); };
+  const double target_logit = logit(target);
   auto residual = [&](double m) {
     last = form.eval(m);
-    return std::pair{last.chordAngle() - target, last.dChordAngle()};
+    const double phi = last.chordAngle();
+    if (!(phi > 0.0 && phi < theta_d)) return std::pair{phi - target, last.dChordAngle()};
+    return std::pair{logit(phi) - target_logit, last.dChordAngle() * theta_d / (phi * (theta_d - phi))};
   };
   const double m_max = maxShape(alpha, options);
   const bool up = target > 0.5 * theta_d;  // chord angle grows with m; circle at m = 0
   RootOptions root_options;
-  root_options.f_tol = options.chord_tolerance * theta_d;
+  // |d logit / d phi| >= 4 / theta_d, so this keeps |phi - target| <= chord_tolerance * theta_d
+  root_options.f_tol = 4.0 * options.chord_tolerance;
   root_options.x_tol = 1e-15;
   root_options.max_iterations = options.max_iterations;
   const RootResult root = up ? solveMonotone(residual, 0.0, m_max, 0.0, true, root_options)
