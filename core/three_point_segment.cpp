@@ -29,6 +29,11 @@ constexpr double kMaxExponent = 600.0;
 constexpr double kLayoutMargin = 0.6;
 constexpr int kLogBaseNodes = 24;
 constexpr double kLogBasePanelChange = 12.0;
+// The rough rule for Newton's first steps: 8 nodes over changes of 4 per panel give
+// ~(2^16 / 16!) ~ 3e-9 relative, plenty until the chord angle is within 1e-5.
+constexpr int kRoughNodes = 8;
+constexpr double kRoughPanelChange = 4.0;
+constexpr double kRoughStageTolerance = 1e-5;  // in the logit of the chord angle
 
 struct StandardEval {
   Vec2 end = Vec2::Zero();     // E(m)
@@ -45,11 +50,13 @@ class StandardForm {
  public:
   StandardForm(double alpha, double theta_d) : alpha_(alpha), theta_d_(theta_d) {}
 
-  StandardEval eval(double m) {
+  /// `rough`: about 1e-6 relative instead of 1e-15, for Newton's first steps.
+  StandardEval eval(double m, bool rough = false) {
     const Law law = lawAt(m);
     // One panel of fixed nodes (cos/sin reused) when rho is tame in tau; otherwise
     // the log-base form, whose integrand is smooth however close the branch point is.
-    if (!law.unit_alpha && !singlePanelValid(law)) return evalLogBase(law);
+    if (!law.unit_alpha && !singlePanelValid(law))
+      return rough ? evalLogBase<kRoughNodes>(law, kRoughPanelChange) : evalLogBase<kLogBaseNodes>(law, kLogBasePanelChange);
     if (!layoutValid(law)) buildLayout(law);
     double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
     for (std::size_t k = 0; k < tau_.size(); ++k) {
@@ -119,7 +126,8 @@ class StandardForm {
   // an entire integrand: the singularity of b^p at b = 0 is pushed to l = -inf. On each
   // panel the exponents (and theta) change by at most kLogBasePanelChange, which
   // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!).
-  StandardEval evalLogBase(const Law& law) const {
+  template <int Nodes>
+  StandardEval evalLogBase(const Law& law, double panel_change) const {
     const double range = (alpha_ - 1.0) * law.m;  // log(1 + A), exactly
     // d/dl of the exponents is at most |p + 1| (and 1 for tau); of theta it is
     // theta_d e^l / |A|, large only near the top of l's range. Panels are graded from
@@ -127,13 +135,13 @@ class StandardForm {
     // kLogBasePanelChange.
     const double exp_rate = std::max({std::abs(law.p + 1.0), std::abs(law.p), 1.0});
     const double lo = std::min(0.0, range), hi = std::max(0.0, range);
-    const auto& rule = gaussLegendre<kLogBaseNodes>();
+    const auto& rule = gaussLegendre<Nodes>();
     double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
     for (double top = hi; top > lo;) {
       const double theta_rate = theta_d_ * std::exp(top) / std::abs(law.a);
-      const double bottom = std::max(lo, top - kLogBasePanelChange / (exp_rate + theta_rate));
+      const double bottom = std::max(lo, top - panel_change / (exp_rate + theta_rate));
       const double width = top - bottom;
-      for (int k = 0; k < kLogBaseNodes; ++k) {
+      for (int k = 0; k < Nodes; ++k) {
         const double l = bottom + width * rule.node[k];
         const double em1 = std::expm1(l);
         const double tau = em1 / law.a;
@@ -287,8 +295,9 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
   // approaches from one side in many small steps; in the logit it is nearly straight.
   auto logit = [&](double phi) { return std::log(phi / (theta_d - phi)); };
   const double target_logit = logit(target);
+  bool rough = false;
   auto residual = [&](double m) {
-    last = form.eval(m);
+    last = form.eval(m, rough);
     const double phi = last.chordAngle();
     if (!(phi > 0.0 && phi < theta_d)) return std::pair{phi - target, last.dChordAngle()};
     return std::pair{logit(phi) - target_logit, last.dChordAngle() * theta_d / (phi * (theta_d - phi))};
@@ -300,8 +309,18 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
   root_options.f_tol = 4.0 * options.chord_tolerance;
   root_options.x_tol = 1e-15;
   root_options.max_iterations = options.max_iterations;
-  const RootResult root = up ? solveMonotone(residual, 0.0, m_max, 0.0, true, root_options)
-                             : solveMonotone(residual, -m_max, 0.0, 0.0, true, root_options);
+  // Two stages: rough evaluations to get close, then the full rule from there (Newton
+  // needs one or two steps). The bracket is the whole range both times, so the second
+  // stage still finds the root, or its absence, if the rough one was misled.
+  rough = true;
+  RootOptions rough_options = root_options;
+  rough_options.f_tol = kRoughStageTolerance;
+  const double lo = up ? 0.0 : -m_max, hi = up ? m_max : 0.0;
+  const RootResult first = solveMonotone(residual, lo, hi, 0.0, true, rough_options);
+  rough = false;
+  const double start = std::isfinite(first.x) ? std::clamp(first.x, lo, hi) : 0.0;
+  RootResult root = solveMonotone(residual, lo, hi, start, true, root_options);
+  root.report.iterations += first.report.iterations;
   out.report = root.report;
   out.shape = root.x;
   if (root.report.status == SolveStatus::kInfeasible) {
