@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace la {
 
@@ -29,5 +30,17 @@ inline double signedAngle(const Vec2& a, const Vec2& b) {
 }
 
 inline bool allFinite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+
+/// Diagonal of the axis-aligned bounding box (0 for no points): the scale every
+/// relative tolerance and figure in the project refers to.
+inline double boundingBoxDiagonal(const std::vector<Vec2>& points) {
+  if (points.empty()) return 0.0;
+  Vec2 lo = points.front(), hi = points.front();
+  for (const Vec2& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).norm();
+}
 
 }  // namespace la

@@ -20,15 +20,6 @@ double pointToEdge(const Vec2& p, const Vec2& a, const Vec2& b) {
   return (a + t * ab - p).norm();
 }
 
-double bboxDiagonal(const std::vector<Vec2>& points) {
-  if (points.empty()) return 0.0;
-  Vec2 lo = points.front(), hi = points.front();
-  for (const Vec2& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
-}
 
 }  // namespace
 
@@ -91,7 +82,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points) {
   QualityFigures q;
-  q.diagonal = bboxDiagonal(points);
+  q.diagonal = boundingBoxDiagonal(points);
   const double diag = q.diagonal > 0.0 ? q.diagonal : 1.0;
   q.segments = static_cast<int>(curve.pieces.size());
   const std::vector<double> d = distancesToCurve(curve, points, diag);

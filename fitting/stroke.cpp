@@ -62,9 +62,9 @@ constexpr double kMaxOverlapFraction = 0.25;
 /// 7.3% of the diagonal outside it (close_fraction is 6%); open gestures never cross
 /// their start line near the start.
 constexpr double kCrossReach = 2.0;
-/// A kinked seam may be moved to a closing step this many close distances long: a
-/// circle missing its start sideways by close_fraction needs a closing step about 3
-/// times as long to meet both ends smoothly.
+/// A kinked seam may be moved to a closing step this many close distances long: bridging
+/// a sideways miss gently takes a step several times as long as the miss (on a circle of
+/// radius r, a miss d is bridged best by a step of about sqrt(2 r d)).
 constexpr double kSeamReach = 4.0;
 /// The end of a stroke run past its start is beside its head if their directions differ
 /// by less than this.
@@ -86,7 +86,7 @@ constexpr double kSharpRatio = 0.7;
 /// A hook is nearly straight: no point of it is farther than this fraction of its chord
 /// from the chord (a circular arc turning 90 degrees has 0.21, one turning 60 degrees 0.13).
 constexpr double kHookStraightness = 0.15;
-/// A hook's chord is at least this many noise levels long (about 2 px on pixel-quantized
+/// A hook's chord is at least this many noise levels long (3 px on pixel-quantized
 /// input); anything shorter is within the sampling noise and harmless to the fit.
 constexpr double kHookMinNoise = 6.0;
 /// Coordinates are on a grid if this share of the step components are multiples of the
@@ -96,16 +96,6 @@ constexpr double kGridTolerance = 1e-3;
 /// Windows are at least this many noise levels long: over such a chord, noise moves
 /// the direction by about 1/8 rad.
 constexpr double kWindowNoise = 8.0;
-
-double boxDiagonal(const std::vector<Vec2>& p) {
-  if (p.empty()) return 0.0;
-  Vec2 lo = p.front(), hi = p.front();
-  for (const Vec2& q : p) {
-    lo = lo.cwiseMin(q);
-    hi = hi.cwiseMax(q);
-  }
-  return (hi - lo).norm();
-}
 
 std::vector<double> arcLengths(const std::vector<Vec2>& p) {
   std::vector<double> s(p.size(), 0.0);
@@ -429,7 +419,7 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
   const Polyline line(p, false);
   const std::vector<double> s = arcLengths(p);
   const double length = s.back();
-  const double reach = options.close_fraction * boxDiagonal(p);
+  const double reach = options.close_fraction * boundingBoxDiagonal(p);
   const double tail_start = (1.0 - kMaxOverlapFraction) * length;
 
   double nearest_segment = std::numeric_limits<double>::infinity();
@@ -571,7 +561,7 @@ double lineDeviation(const std::vector<Vec2>& p) {
 }
 
 bool collinear(const std::vector<Vec2>& p) {
-  return p.size() < 3 || lineDeviation(p) < kCollinearTolerance * boxDiagonal(p);
+  return p.size() < 3 || lineDeviation(p) < kCollinearTolerance * boundingBoxDiagonal(p);
 }
 
 }  // namespace
@@ -591,7 +581,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     finite.push_back(raw.samples[i].p);
     finite_source.push_back(i);
   }
-  const double duplicate_distance = kDuplicateTolerance * boxDiagonal(finite);
+  const double duplicate_distance = kDuplicateTolerance * boundingBoxDiagonal(finite);
   Points pts;
   for (std::size_t i = 0; i < finite.size(); ++i) {
     if (!pts.p.empty() && (finite[i] - pts.p.back()).norm() <= duplicate_distance) {
@@ -667,7 +657,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
 
   // 5. Input errors (the seam of a closed stroke could leave too little).
   publish();
-  result.diagonal = boxDiagonal(pts.p);
+  result.diagonal = boundingBoxDiagonal(pts.p);
   if (collinear(pts.p)) fail("all points lie on one straight line", samples, result);
 
   // 6. Corners; a closed stroke starts at its corner nearest the original start.

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_support.h"
+
 #include <Eigen/Dense>
 #include <cmath>
 #include <numbers>
@@ -17,20 +19,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-struct Triangle {
-  Vec2 q0, q1, q2;
-};
-
-Triangle triangleOf(const LaSegment& seg) {
-  const Vec2 p0 = seg.start(), p2 = seg.end(1e-15);
-  const Vec2 t0 = seg.tangent(0.0), t1 = seg.tangent(seg.length());
-  Eigen::Matrix2d m;
-  m << t0.x(), t1.x(), t0.y(), t1.y();
-  const Eigen::Vector2d ab = m.colPivHouseholderQr().solve(p2 - p0);
-  return {p0, p0 + ab.x() * t0, p2};
-}
-
-double relDiff(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
+using test::Triangle;
+using test::triangleOf;
+using test::relDiff;
 
 // Fresnel integrals int_0^x cos(t^2) dt and int_0^x sin(t^2) dt by their power series
 // (alternating, fine for x <= 2 in long double).

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/test_support.h"
+
 #include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <complex>
@@ -22,22 +24,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-struct Triangle {
-  Vec2 q0, q1, q2;
-};
-
-// The control triangle of a segment: its end points and the intersection of its end tangents.
-Triangle triangleOf(const LaSegment& seg) {
-  const Vec2 p0 = seg.start(), p2 = seg.end(1e-15);
-  const Vec2 t0 = seg.tangent(0.0), t1 = seg.tangent(seg.length());
-  // p0 + a t0 = p2 - b t1
-  Eigen::Matrix2d m;
-  m << t0.x(), t1.x(), t0.y(), t1.y();
-  const Eigen::Vector2d ab = m.colPivHouseholderQr().solve(p2 - p0);
-  return {p0, p0 + ab.x() * t0, p2};
-}
-
-double relDiff(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
+using test::Triangle;
+using test::triangleOf;
+using test::relDiff;
 
 // Checks that the solved segment reproduces the given one (same end points and curvatures).
 void expectSameSegment(const LaSegment& want, const LaSegment& got, double tol, const std::string& what) {
