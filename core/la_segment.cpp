@@ -21,6 +21,8 @@ constexpr double kSeriesMaxRatio = 0.1;
 // At most this turning per panel, 2 Gauss-Legendre nodes suffice: the rule's error is
 // h f/4320 with f ~ turning^4, below 3e-12 h.
 constexpr double kTwoNodeTurning = 0.01;
+// The sampler evaluates theta and kappa exactly at least every this many samples.
+constexpr int kResyncSamples = 16;
 
 std::string describe(double alpha, double length, double k0, double k1) {
   return "alpha=" + std::to_string(alpha) + " length=" + std::to_string(length) +
@@ -70,7 +72,7 @@ LaSegment::LaSegment(double alpha, double length, Vec2 start, double theta0,
   if (!std::isfinite(kappa_start) || !std::isfinite(kappa_end)) fail("curvature not finite");
   if (kappa_start * kappa_end < 0.0) fail("end curvatures of opposite sign");
 
-  series_[0] = 1.0;  // the circle's turning is exactly kappa * tau
+  series_[0] = kappa_series_[0] = 1.0;  // the circle's turning is exactly kappa * tau
   const double a0 = std::abs(kappa_start), a1 = std::abs(kappa_end);
   sign_ = (kappa_start + kappa_end > 0.0) ? 1.0 : (kappa_start + kappa_end < 0.0 ? -1.0 : 0.0);
 
@@ -86,6 +88,8 @@ LaSegment::LaSegment(double alpha, double length, Vec2 start, double theta0,
   if (alpha == 0.0) {
     law_ = Law::kExponential;
     for (int k = 1; k <= kSeriesTerms; ++k) series_[k] = -series_[k - 1] / (k + 1.0);
+    kappa_series_[0] = 1.0;  // e^-x
+    for (int k = 1; k <= kSeriesTerms; ++k) kappa_series_[k] = -kappa_series_[k - 1] / k;
     kappa_ref_ = a0;
     growth_ = std::log(a0 / a1) / length;  // log rho grows by log(rho1/rho0) over L
     return;
@@ -93,6 +97,8 @@ LaSegment::LaSegment(double alpha, double length, Vec2 start, double theta0,
   law_ = Law::kPower;
   exponent_ = 1.0 - 1.0 / alpha;
   for (int k = 1; k <= kSeriesTerms; ++k) series_[k] = series_[k - 1] * (exponent_ - k) / (k + 1.0);
+  kappa_series_[0] = 1.0;  // binomial series of (1 + x)^(-1/alpha)
+  for (int k = 1; k <= kSeriesTerms; ++k) kappa_series_[k] = kappa_series_[k - 1] * (-1.0 / alpha - (k - 1)) / k;
   if (a0 > 0.0) {
     kappa_ref_ = a0;
     v0_ = 1.0;
@@ -198,20 +204,19 @@ LaSegment LaSegment::reversed() const {
                    -kappa_start_);
 }
 
-bool LaSegment::panelBySeries(double s0, double h, double theta_start, double theta_end, double kappa_start,
-                              const Vec2& tangent_start, Vec2& delta) const {
-  const double turn = std::abs(theta_end - theta_start);
-  if (turn > kSeriesMaxTurning) return false;
+bool LaSegment::panelBySeries(double s0, double h, double kappa_start, const Vec2& tangent_start,
+                              PanelStep& step) const {
   // Turning over [s0, s0 + tau] is kappa(s0) * tau * G(x), x the law's local variable
   // proportional to tau, G(x) = sum_k g_k x^k with g_0 = 1 and a two-term recurrence:
   //   power law:       x = dv tau / v(s0), G = ((1+x)^e - 1)/(e x), g_k = g_{k-1}(e-k)/(k+1)
   //   exponential law: x = g tau,          G = (1 - e^-x)/x,       g_k = -g_{k-1}/(k+1)
+  // and the curvature at s0 + h is kappa(s0) times (1+x)^(-1/alpha), resp. e^-x.
   double x_end = 0.0, ratio_bound = 0.0;
   if (law_ == Law::kPower) {
     const double v_start = v(s0);
     if (!(v_start > 0.0)) return false;
     x_end = dv_ * h / v_start;
-    ratio_bound = std::abs(x_end) * std::max(1.0, std::abs(exponent_));
+    ratio_bound = std::abs(x_end) * std::max({1.0, std::abs(exponent_), std::abs(1.0 / alpha_)});
   } else if (law_ == Law::kExponential) {
     x_end = growth_ * h;
     ratio_bound = std::abs(x_end);
@@ -219,25 +224,35 @@ bool LaSegment::panelBySeries(double s0, double h, double theta_start, double th
   if (ratio_bound > kSeriesMaxRatio) return false;
 
   const double k_h = kappa_start * h;  // turning of the panel to first order
-  int terms = 0;  // enough that the tail is below 1e-17 of the panel length
-  for (double bound = std::abs(k_h); terms < kSeriesTerms && bound * ratio_bound > 1e-17; bound *= ratio_bound) ++terms;
+  int terms = 0;  // enough that the tail is below 1e-17 of the panel length (and relative)
+  for (double bound = std::max(std::abs(k_h), 1.0); terms < kSeriesTerms && bound * ratio_bound > 1e-17;
+       bound *= ratio_bound)
+    ++terms;
+  auto turningAt = [&](double t) {  // turning over [s0, s0 + t h]
+    const double x = x_end * t;
+    double g = series_[terms];
+    for (int k = terms - 1; k >= 0; --k) g = g * x + series_[k];
+    return k_h * t * g;
+  };
+  step.turning = turningAt(1.0);
+  if (std::abs(step.turning) > kSeriesMaxTurning) return false;
+  double ratio = kappa_series_[terms];
+  for (int k = terms - 1; k >= 0; --k) ratio = ratio * x_end + kappa_series_[k];
+  step.kappa_ratio = ratio;
+
   double cx = 0.0, cy = 0.0;
   auto accumulate = [&](const auto& rule, int nodes) {
     for (int j = 0; j < nodes; ++j) {
-      const double t = rule.node[j];
-      const double x = x_end * t;
-      double g = series_[terms];
-      for (int k = terms - 1; k >= 0; --k) g = g * x + series_[k];
       double c, sn;
-      smallSinCos(k_h * t * g, c, sn);
+      smallSinCos(turningAt(rule.node[j]), c, sn);
       cx += rule.weight[j] * c;
       cy += rule.weight[j] * sn;
     }
   };
-  if (turn <= kTwoNodeTurning) accumulate(gaussLegendre<2>(), 2);
+  if (std::abs(step.turning) <= kTwoNodeTurning) accumulate(gaussLegendre<2>(), 2);
   else accumulate(gaussLegendre<4>(), 4);
   const double ct = tangent_start.x(), st = tangent_start.y();
-  delta = h * Vec2(ct * cx - st * cy, st * cx + ct * cy);
+  step.delta = h * Vec2(ct * cx - st * cy, st * cx + ct * cy);
   return true;
 }
 
@@ -245,29 +260,47 @@ void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relativ
   if (n < 2) throw std::invalid_argument("LaSegment::sample: need at least 2 samples");
   const double h = length_ / (n - 1);
   const double panel_tol = relative_tolerance * length_ / (n - 1);
+  // theta, kappa and the tangent are carried from sample to sample by the panel series,
+  // relative to the last exact evaluation (every kResyncSamples samples, or sooner if
+  // the turning since then would leave smallSinCos's range), so rounding cannot pile up.
   Vec2 p = start_;
-  double theta_prev = theta0_, kappa_prev = kappa_start_;
-  Vec2 tangent_prev = unitVector(theta0_);
+  double th = theta0_, k = kappa_start_;
+  double th_exact = theta0_, k_exact = kappa_start_, turned = 0.0, ratio = 1.0;
+  Vec2 tangent = unitVector(theta0_), tangent_exact = tangent;
+  int since_exact = 0;
   for (int i = 0; i < n; ++i) {
     const double s = (i == n - 1) ? length_ : i * h;
-    double th, k;
-    thetaKappa(s, th, k);
     if (i > 0) {
       const double s_prev = (i - 1) * h;
-      Vec2 delta;
-      if (!panelBySeries(s_prev, s - s_prev, theta_prev, th, kappa_prev, tangent_prev, delta))
-        delta = integratePositionAdaptive(s_prev, s, panel_tol);
-      p += delta;
+      PanelStep step;
+      const bool series = panelBySeries(s_prev, s - s_prev, k, tangent, step);
+      p += series ? step.delta : integratePositionAdaptive(s_prev, s, panel_tol);
+      ++since_exact;
+      if (series && i < n - 1 && since_exact < kResyncSamples &&
+          std::abs(turned + step.turning) <= kSeriesMaxTurning) {
+        turned += step.turning;
+        ratio *= step.kappa_ratio;
+        th = th_exact + turned;
+        k = k_exact * ratio;
+        double c, sn;
+        smallSinCos(turned, c, sn);
+        tangent = Vec2(c * tangent_exact.x() - sn * tangent_exact.y(), sn * tangent_exact.x() + c * tangent_exact.y());
+      } else {
+        thetaKappa(s, th, k);
+        tangent = unitVector(th);
+        th_exact = th;
+        k_exact = k;
+        tangent_exact = tangent;
+        turned = 0.0;
+        ratio = 1.0;
+        since_exact = 0;
+      }
     }
-    const Vec2 tangent = unitVector(th);
     out.s.push_back(s_offset + s);
     out.point.push_back(p);
     out.tangent.push_back(tangent);
     out.theta.push_back(th);
     out.kappa.push_back(k);
-    theta_prev = th;
-    kappa_prev = k;
-    tangent_prev = tangent;
   }
 }
 

@@ -90,8 +90,12 @@ class LaSegment {
   double logV(double s) const;
   Vec2 integratePositionAdaptive(double s0, double s1, double abs_tol) const;
   // One panel of the sampler; returns false where the series is not accurate enough.
-  bool panelBySeries(double s0, double h, double theta_start, double theta_end, double kappa_start,
-                     const Vec2& tangent_start, Vec2& delta) const;
+  struct PanelStep {
+    Vec2 delta;          // position change over the panel
+    double turning;      // theta change
+    double kappa_ratio;  // kappa at the panel's end over kappa at its start
+  };
+  bool panelBySeries(double s0, double h, double kappa_start, const Vec2& tangent_start, PanelStep& step) const;
   // theta(s) and kappa(s) together (they share the law's logarithm).
   void thetaKappa(double s, double& theta, double& kappa) const;
 
@@ -111,6 +115,7 @@ class LaSegment {
   // (see panelBySeries); they depend on alpha only.
   static constexpr int kSeriesTerms = 24;
   std::array<double, kSeriesTerms + 1> series_{};
+  std::array<double, kSeriesTerms + 1> kappa_series_{};  // of kappa(s0 + h) / kappa(s0) in x
   double growth_ = 0.0;    // g of the exponential law
 };
 
