@@ -1,0 +1,208 @@
+#include "app/gui/canvas.h"
+
+#include <QDateTime>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QPainterPath>
+#include <QTabletEvent>
+#include <QWheelEvent>
+#include <algorithm>
+#include <cmath>
+
+namespace la::gui {
+namespace {
+
+constexpr double kZoomStep = 1.15;  // per wheel notch
+const QColor kRawColor(150, 150, 150);
+const QColor kCurveColor(21, 101, 192);
+const QColor kCombColor(211, 47, 47, 160);
+const QColor kStrokeInkColor(60, 60, 60);
+
+}  // namespace
+
+Canvas::Canvas(QWidget* parent) : QWidget(parent) {
+  setAttribute(Qt::WA_TabletTracking);
+  setAttribute(Qt::WA_AcceptTouchEvents);
+  setMouseTracking(true);
+  setMinimumSize(400, 300);
+  setAutoFillBackground(true);
+  QPalette pal = palette();
+  pal.setColor(QPalette::Window, Qt::white);
+  setPalette(pal);
+}
+
+void Canvas::setDocument(const Document* document) {
+  m_document = document;
+  update();
+}
+
+QPointF Canvas::toWorld(const QPointF& w) const { return m_view.inverted().map(w); }
+QPointF Canvas::toWidget(const Vec2& p) const { return m_view.map(QPointF(p.x(), p.y())); }
+
+void Canvas::fitView() {
+  if (!m_document || m_document->strokes().empty()) {
+    m_view = QTransform();
+    update();
+    return;
+  }
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const DocumentStroke& s : m_document->strokes())
+    for (const StrokeSample& p : s.raw.samples) {
+      x0 = std::min(x0, p.p.x()), x1 = std::max(x1, p.p.x());
+      y0 = std::min(y0, p.p.y()), y1 = std::max(y1, p.p.y());
+    }
+  const double w = std::max(x1 - x0, 1e-9), h = std::max(y1 - y0, 1e-9);
+  const double scale = 0.85 * std::min(width() / w, height() / h);
+  m_view = QTransform();
+  m_view.translate(width() / 2.0, height() / 2.0);
+  m_view.scale(scale, scale);
+  m_view.translate(-(x0 + x1) / 2.0, -(y0 + y1) / 2.0);
+  update();
+}
+
+void Canvas::beginStroke(const QPointF& pos, double pressure, double time_ms) {
+  m_drawing = true;
+  m_current = Stroke();
+  m_stroke_start_ms = static_cast<qint64>(time_ms);
+  extendStroke(pos, pressure, time_ms);
+}
+
+void Canvas::extendStroke(const QPointF& pos, double pressure, double time_ms) {
+  const QPointF w = toWorld(pos);
+  StrokeSample s;
+  s.p = Vec2(w.x(), w.y());
+  s.t = time_ms - static_cast<double>(m_stroke_start_ms);
+  s.pressure = pressure;
+  m_current.samples.push_back(s);
+  update();  // painting happens in paintEvent, never here
+}
+
+void Canvas::endStroke() {
+  m_drawing = false;
+  const Stroke finished = m_current;
+  m_current = Stroke();
+  if (finished.samples.size() >= 2) emit strokeFinished(finished);
+  update();
+}
+
+void Canvas::tabletEvent(QTabletEvent* e) {
+  const double now = static_cast<double>(e->timestamp());
+  switch (e->type()) {
+    case QEvent::TabletPress: beginStroke(e->position(), e->pressure(), now); break;
+    case QEvent::TabletMove:
+      if (m_drawing) extendStroke(e->position(), e->pressure(), now);
+      emit cursorMoved(toWorld(e->position()));
+      break;
+    case QEvent::TabletRelease:
+      if (m_drawing) endStroke();
+      break;
+    default: break;
+  }
+  e->accept();  // no synthesized mouse events for pen input
+}
+
+void Canvas::mousePressEvent(QMouseEvent* e) {
+  if (e->button() == Qt::MiddleButton || (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ShiftModifier))) {
+    m_panning = true;
+    m_pan_anchor = e->position();
+  } else if (e->button() == Qt::LeftButton) {
+    beginStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
+  }
+}
+
+void Canvas::mouseMoveEvent(QMouseEvent* e) {
+  if (m_panning) {
+    const QPointF d = e->position() - m_pan_anchor;
+    m_pan_anchor = e->position();
+    QTransform shift;
+    shift.translate(d.x(), d.y());
+    m_view = m_view * shift;
+    update();
+  } else if (m_drawing) {
+    extendStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
+  }
+  emit cursorMoved(toWorld(e->position()));
+}
+
+void Canvas::mouseReleaseEvent(QMouseEvent*) {
+  if (m_panning) m_panning = false;
+  else if (m_drawing) endStroke();
+}
+
+void Canvas::wheelEvent(QWheelEvent* e) {
+  const double factor = std::pow(kZoomStep, e->angleDelta().y() / 120.0);
+  const QPointF c = e->position();
+  QTransform zoom;
+  zoom.translate(c.x(), c.y());
+  zoom.scale(factor, factor);
+  zoom.translate(-c.x(), -c.y());
+  m_view = m_view * zoom;
+  update();
+}
+
+void Canvas::paintCurve(QPainter& p, const FitResult& fit) const {
+  const Curve& curve = fit.curve;
+  double kmax = 0.0;
+  for (const CurvePiece& piece : curve.pieces)
+    kmax = std::max({kmax, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
+  const double comb_world = kmax > 0 ? m_layers.comb_scale * std::min(width(), height()) / m_view.m11() / kmax : 0.0;
+  for (const CurvePiece& piece : curve.pieces) {
+    const LaSegment& seg = piece.segment;
+    if (m_layers.comb && comb_world > 0) {
+      const CurveSamples teeth = seg.sample(std::max(2, m_layers.comb_density));
+      p.setPen(QPen(kCombColor, 1.0));
+      QPolygonF envelope;
+      for (std::size_t i = 0; i < teeth.size(); ++i) {
+        const Vec2 n(-teeth.tangent[i].y(), teeth.tangent[i].x());
+        const Vec2 tip = teeth.point[i] - comb_world * teeth.kappa[i] * n;
+        p.drawLine(toWidget(teeth.point[i]), toWidget(tip));
+        envelope << toWidget(tip);
+      }
+      p.drawPolyline(envelope);
+    }
+    if (m_layers.curve) {
+      const int n = std::clamp(static_cast<int>(seg.length() * m_view.m11() / 3.0), 8, 2000);
+      const CurveSamples smp = seg.sample(n);
+      QPolygonF line;
+      for (const Vec2& q : smp.point) line << toWidget(q);
+      p.setPen(QPen(kCurveColor, 2.2));
+      p.drawPolyline(line);
+    }
+    if (m_layers.markers) {
+      const QPointF joint = toWidget(seg.start());
+      p.setPen(QPen(Qt::black, 1.0));
+      p.setBrush(Qt::NoBrush);
+      if (seg.kappaStart() == 0.0) {
+        p.drawEllipse(joint, 5, 5);  // inflection
+      } else if (piece.corner) {
+        p.drawLine(joint + QPointF(-5, -5), joint + QPointF(5, 5));  // corner
+        p.drawLine(joint + QPointF(-5, 5), joint + QPointF(5, -5));
+      } else {
+        p.drawRect(QRectF(joint - QPointF(4, 4), QSizeF(8, 8)));  // curvature extremum / joint
+      }
+    }
+  }
+}
+
+void Canvas::paintEvent(QPaintEvent*) {
+  QPainter p(this);
+  p.setRenderHint(QPainter::Antialiasing);
+  if (m_document) {
+    for (const DocumentStroke& s : m_document->strokes()) {
+      if (m_layers.raw_points || !s.fit) {
+        p.setPen(Qt::NoPen);
+        p.setBrush(kRawColor);
+        for (const StrokeSample& q : s.raw.samples) p.drawEllipse(toWidget(q.p), 1.8, 1.8);
+      }
+      if (s.fit) paintCurve(p, *s.fit);
+    }
+  }
+  if (!m_current.samples.empty()) {  // the stroke in progress, as ink
+    QPolygonF ink;
+    for (const StrokeSample& q : m_current.samples) ink << toWidget(q.p);
+    p.setPen(QPen(kStrokeInkColor, 1.5));
+    p.drawPolyline(ink);
+  }
+}
+
+}  // namespace la::gui

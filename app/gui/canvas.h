@@ -1,0 +1,63 @@
+#pragma once
+// The drawing canvas: records pen (QTabletEvent: position, pressure, time; tablet
+// tracking on), mouse and touch input as strokes, and shows the document: raw points,
+// fitted LA curves, curvature combs, inflections (circles), curvature extrema
+// (squares), joints. Wheel zooms about the cursor, the middle button (or space+drag)
+// pans. The widget records and paints; fitting is the document's job.
+
+#include <QPointF>
+#include <QTransform>
+#include <QWidget>
+
+#include "app/gui/document.h"
+
+namespace la::gui {
+
+struct Layers {
+  bool raw_points = true;
+  bool curve = true;
+  bool comb = true;
+  bool markers = true;  // joints, inflections, extrema
+  double comb_scale = 0.08;  // longest tooth, relative to the view's shorter side
+  int comb_density = 24;     // teeth per segment
+};
+
+class Canvas : public QWidget {
+  Q_OBJECT
+ public:
+  explicit Canvas(QWidget* parent = nullptr);
+  void setDocument(const Document* document);
+  Layers& layers() { return m_layers; }
+  void fitView();  // zoom to show every stroke
+  QPointF toWorld(const QPointF& widget_point) const;
+  QPointF toWidget(const Vec2& world) const;
+
+ signals:
+  void strokeFinished(const la::Stroke& stroke);
+  void cursorMoved(const QPointF& world);
+
+ protected:
+  void paintEvent(QPaintEvent*) override;
+  void tabletEvent(QTabletEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+
+ private:
+  void beginStroke(const QPointF& pos, double pressure, double time_ms);
+  void extendStroke(const QPointF& pos, double pressure, double time_ms);
+  void endStroke();
+  void paintCurve(QPainter& p, const FitResult& fit) const;
+
+  const Document* m_document = nullptr;
+  Layers m_layers;
+  QTransform m_view;          // world -> widget
+  bool m_drawing = false;
+  bool m_panning = false;
+  QPointF m_pan_anchor;
+  Stroke m_current;           // the stroke being drawn, in world coordinates
+  qint64 m_stroke_start_ms = 0;
+};
+
+}  // namespace la::gui

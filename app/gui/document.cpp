@@ -1,0 +1,124 @@
+#include "app/gui/document.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "app/io/fit_json.h"
+#include "core/atomic_file.h"
+#include "nlohmann/json.hpp"
+
+namespace la::gui {
+namespace {
+
+nlohmann::json optionsToJson(const FitOptions& o) {
+  return {{"tolerance", o.tolerance_fraction},
+          {"max_extrema", o.segmentation.max_extrema},
+          {"significance", o.segmentation.significance},
+          {"g2", toString(o.g2)},
+          {"g2_threshold", o.g2_threshold},
+          {"corners", o.cleanup.detect_corners}};
+}
+
+FitOptions optionsFromJson(const nlohmann::json& j) {
+  FitOptions o;
+  o.tolerance_fraction = j.value("tolerance", o.tolerance_fraction);
+  o.segmentation.max_extrema = j.value("max_extrema", o.segmentation.max_extrema);
+  o.segmentation.significance = j.value("significance", o.segmentation.significance);
+  const std::string g2 = j.value("g2", std::string("newton"));
+  o.g2 = g2 == "bisection" ? G2Method::kBisection : g2 == "off" ? G2Method::kOff : G2Method::kNewton;
+  o.g2_threshold = j.value("g2_threshold", o.g2_threshold);
+  o.cleanup.detect_corners = j.value("corners", true);
+  return o;
+}
+
+}  // namespace
+
+void Document::fit(DocumentStroke& s) const {
+  try {
+    s.fit = fitStroke(s.raw, options_);
+    s.error.clear();
+  } catch (const StrokeError& e) {  // a dot or a straight tap: kept, shown unfitted
+    s.fit.reset();
+    s.error = e.what();
+  }
+}
+
+std::size_t Document::addStroke(const Stroke& raw) {
+  insertStroke(strokes_.size(), raw);
+  return strokes_.size() - 1;
+}
+
+void Document::insertStroke(std::size_t index, const Stroke& raw) {
+  DocumentStroke s{raw, std::nullopt, {}};
+  fit(s);
+  strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
+}
+
+void Document::removeStroke(std::size_t index) {
+  if (index < strokes_.size()) strokes_.erase(strokes_.begin() + static_cast<long>(index));
+}
+
+void Document::setOptions(const FitOptions& options) {
+  options_ = options;
+  for (DocumentStroke& s : strokes_) fit(s);
+}
+
+void Document::clear() { strokes_.clear(); }
+
+void Document::save(const QString& path) const {
+  nlohmann::json strokes = nlohmann::json::array(), curves = nlohmann::json::array();
+  for (const DocumentStroke& s : strokes_) {
+    nlohmann::json pts = nlohmann::json::array(), t = nlohmann::json::array(), pressure = nlohmann::json::array();
+    for (const StrokeSample& p : s.raw.samples) {
+      pts.push_back({p.p.x(), p.p.y()});
+      t.push_back(std::isnan(p.t) ? nlohmann::json(nullptr) : nlohmann::json(p.t));
+      pressure.push_back(std::isnan(p.pressure) ? nlohmann::json(nullptr) : nlohmann::json(p.pressure));
+    }
+    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}});
+    curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
+  }
+  const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", optionsToJson(options_)},
+                              {"strokes", strokes}, {"curves", curves}};
+  writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
+}
+
+void Document::load(const QString& path) {
+  const std::string name = path.toStdString();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(readFile(name));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::runtime_error(name + ": not a JSON document (" + e.what() + ")");
+  }
+  if (doc.value("format", std::string()) != "lafair-sketch")
+    throw std::runtime_error(name + ": not a lafair sketch (no \"format\": \"lafair-sketch\")");
+  std::vector<DocumentStroke> loaded;
+  FitOptions options;
+  try {
+  options = optionsFromJson(doc.value("options", nlohmann::json::object()));
+  const auto& strokes = doc.at("strokes");
+  for (std::size_t i = 0; i < strokes.size(); ++i) {
+    Stroke raw;
+    const auto& pts = strokes[i].at("points");
+    const auto t = strokes[i].value("t", nlohmann::json::array());
+    const auto pr = strokes[i].value("pressure", nlohmann::json::array());
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      if (!pts[k].is_array() || pts[k].size() != 2)
+        throw std::runtime_error(name + ": strokes[" + std::to_string(i) + "].points[" + std::to_string(k) + "]: expected [x, y]");
+      StrokeSample s;
+      s.p = Vec2(pts[k][0].get<double>(), pts[k][1].get<double>());
+      if (k < t.size() && t[k].is_number()) s.t = t[k].get<double>();
+      if (k < pr.size() && pr[k].is_number()) s.pressure = pr[k].get<double>();
+      raw.samples.push_back(s);
+    }
+    loaded.push_back({raw, std::nullopt, {}});
+  }
+  } catch (const nlohmann::json::exception& e) {  // missing key, wrong type
+    throw std::runtime_error(name + ": " + e.what());
+  }
+  options_ = options;
+  strokes_ = std::move(loaded);
+  for (DocumentStroke& s : strokes_) fit(s);
+}
+
+}  // namespace la::gui

@@ -1,0 +1,45 @@
+#pragma once
+// The sketch document: the strokes the user drew (kept raw, never modified), the fit
+// options, and the fitted result of each stroke (recomputed from the raw strokes, so a
+// document file only needs strokes and options). No Qt widgets here.
+
+#include <QString>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fitting/pipeline.h"
+
+namespace la::gui {
+
+struct DocumentStroke {
+  Stroke raw;
+  std::optional<FitResult> fit;  // empty if the stroke could not be fitted
+  std::string error;             // why, then
+};
+
+class Document {
+ public:
+  const std::vector<DocumentStroke>& strokes() const { return strokes_; }
+  const FitOptions& options() const { return options_; }
+
+  /// Adds a stroke and fits it; returns its index.
+  std::size_t addStroke(const Stroke& raw);
+  void removeStroke(std::size_t index);
+  void insertStroke(std::size_t index, const Stroke& raw);
+  void setOptions(const FitOptions& options);  // refits every stroke
+  void clear();
+
+  /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},
+  /// "strokes": [{"points": [[x,y],...], "t": [...], "pressure": [...]}], "curves": [...]}.
+  /// Written atomically; reading throws std::runtime_error naming the file and problem.
+  void save(const QString& path) const;
+  void load(const QString& path);
+
+ private:
+  void fit(DocumentStroke& s) const;
+  std::vector<DocumentStroke> strokes_;
+  FitOptions options_;
+};
+
+}  // namespace la::gui

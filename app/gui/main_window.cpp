@@ -1,0 +1,291 @@
+#include "app/gui/main_window.h"
+
+#include <QAction>
+#include <QApplication>
+#include <QDir>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QTimer>
+#include <QUndoCommand>
+#include <QUndoStack>
+
+#include "app/gui/canvas.h"
+#include "app/gui/curvature_plot.h"
+#include "app/gui/parameter_panel.h"
+#include "app/io/curve_export.h"
+#include "app/io/point_file.h"
+#include "core/atomic_file.h"
+#include "core/curve_json.h"
+
+namespace la::gui {
+namespace {
+
+constexpr int kAutosaveMs = 20000;
+
+class AddStrokeCommand : public QUndoCommand {
+ public:
+  AddStrokeCommand(MainWindow* w, Stroke s) : QUndoCommand("draw stroke"), m_window(w), m_stroke(std::move(s)) {}
+  void redo() override {
+    m_index = m_window->document().strokes().size();
+    m_window->document().insertStroke(m_index, m_stroke);
+    m_window->documentChanged();
+  }
+  void undo() override {
+    m_window->document().removeStroke(m_index);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  Stroke m_stroke;
+  std::size_t m_index = 0;
+};
+
+class SetOptionsCommand : public QUndoCommand {
+ public:
+  SetOptionsCommand(MainWindow* w, FitOptions before, FitOptions after)
+      : QUndoCommand("change fit parameters"), m_window(w), m_before(before), m_after(after) {}
+  void redo() override { apply(m_after); }
+  void undo() override { apply(m_before); }
+
+ private:
+  void apply(const FitOptions& o) {
+    m_window->document().setOptions(o);
+    m_window->parameters()->setOptions(o);
+    m_window->documentChanged();
+  }
+  MainWindow* m_window;
+  FitOptions m_before, m_after;
+};
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
+  setWindowTitle("lafair — fair curves from strokes");
+  m_undo = new QUndoStack(this);
+  m_canvas = new Canvas;
+  m_canvas->setDocument(&m_document);
+  setCentralWidget(m_canvas);
+
+  m_plot = new CurvaturePlot;
+  auto* plot_dock = new QDockWidget("Curvature plot", this);
+  plot_dock->setObjectName("curvature-plot");
+  plot_dock->setWidget(m_plot);
+  addDockWidget(Qt::BottomDockWidgetArea, plot_dock);
+
+  m_parameters = new ParameterPanel;
+  auto* param_dock = new QDockWidget("Fit parameters", this);
+  param_dock->setObjectName("parameters");
+  param_dock->setWidget(m_parameters);
+  addDockWidget(Qt::RightDockWidgetArea, param_dock);
+
+  m_status = new QLabel("draw with the pen or the mouse; shift+drag or middle button pans, wheel zooms");
+  statusBar()->addWidget(m_status, 1);
+
+  connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::addStroke);
+  connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
+    m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
+  });
+  m_autosave = new QTimer(this);
+  connect(m_autosave, &QTimer::timeout, this, &MainWindow::autosave);
+  m_autosave->start(kAutosaveMs);
+  buildMenus();
+  resize(1100, 760);
+}
+
+QString MainWindow::autosavePath() const {
+  const QString dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation);
+  QDir().mkpath(dir);
+  return dir + "/autosave.lafair.json";
+}
+
+void MainWindow::autosave() {
+  if (!m_dirty) return;
+  try {
+    m_document.save(autosavePath());
+  } catch (const std::exception&) {
+    // the next tick tries again; the document in memory is untouched
+  }
+}
+
+void MainWindow::addStroke(const Stroke& stroke) { m_undo->push(new AddStrokeCommand(this, stroke)); }
+
+void MainWindow::documentChanged() {
+  m_dirty = true;
+  m_canvas->update();
+  const FitResult* last = nullptr;
+  for (const DocumentStroke& s : m_document.strokes())
+    if (s.fit) last = &*s.fit;
+  m_plot->setFit(last);
+  if (!last) {
+    m_status->setText(m_document.strokes().empty() ? "no strokes" : "the last stroke could not be fitted");
+    return;
+  }
+  const QualityFigures& q = last->quality;
+  m_status->setText(QString("segments %1 · max deviation %2 (%3% of size) · g2 gap %4 · extrema %5 · fit %6 ms")
+                        .arg(q.segments)
+                        .arg(q.max_dev, 0, 'g', 3)
+                        .arg(100.0 * q.max_dev / std::max(q.diagonal, 1e-300), 0, 'f', 2)
+                        .arg(q.g2_gap, 0, 'g', 2)
+                        .arg(q.extrema)
+                        .arg(last->timings.total_ms, 0, 'f', 2));
+}
+
+void MainWindow::showError(const QString& what) {
+  m_status->setText(what);
+  if (!qEnvironmentVariableIsSet("LAFAIR_NO_DIALOGS")) QMessageBox::warning(this, "lafair", what);
+}
+
+bool MainWindow::openFile(const QString& path) {
+  Document loaded;
+  try {
+    loaded.load(path);
+  } catch (const std::exception& e) {
+    showError(QString::fromStdString(e.what()));
+    return false;  // the open document is untouched
+  }
+  m_document = std::move(loaded);
+  m_canvas->setDocument(&m_document);
+  m_parameters->setOptions(m_document.options());
+  m_undo->clear();
+  m_path = path;
+  documentChanged();
+  m_dirty = false;
+  m_canvas->fitView();
+  return true;
+}
+
+bool MainWindow::saveFile(const QString& path) {
+  try {
+    m_document.save(path);
+  } catch (const std::exception& e) {
+    showError(QString::fromStdString(e.what()));
+    return false;
+  }
+  m_path = path;
+  m_dirty = false;
+  m_undo->setClean();
+  return true;
+}
+
+bool MainWindow::importPoints(const QString& path) {
+  std::vector<Stroke> strokes;
+  try {
+    strokes = readStrokes(path.toStdString());
+  } catch (const std::exception& e) {
+    showError(QString::fromStdString(e.what()));
+    return false;
+  }
+  m_undo->beginMacro("import " + QFileInfo(path).fileName());
+  for (const Stroke& s : strokes) addStroke(s);
+  m_undo->endMacro();
+  m_canvas->fitView();
+  return true;
+}
+
+bool MainWindow::exportFile(const QString& path) {
+  std::vector<Curve> curves;
+  std::vector<std::vector<Vec2>> points;
+  std::vector<CurveOrError> entries;
+  for (const DocumentStroke& s : m_document.strokes()) {
+    if (!s.fit) {
+      entries.push_back({std::nullopt, s.error});
+      continue;
+    }
+    curves.push_back(s.fit->curve);
+    points.push_back(s.fit->cleaned.points);
+    entries.push_back({s.fit->curve, {}});
+  }
+  const QString ext = QFileInfo(path).suffix().toLower();
+  try {
+    if (ext == "svg") {
+      SvgOptions o;
+      o.show_comb = m_canvas->layers().comb;
+      writeFileAtomically(path.toStdString(), curvesToSvg(curves, points, o));
+    } else if (ext == "dxf") {
+      writeFileAtomically(path.toStdString(), curvesToDxf(curves));
+    } else if (ext == "csv") {
+      writeFileAtomically(path.toStdString(), curvesToCsv(curves));
+    } else if (ext == "json") {
+      writeCurvesFile(path.toStdString(), entries);
+    } else {
+      showError("unknown export format '." + ext + "' (svg, dxf, json or csv)");
+      return false;
+    }
+  } catch (const std::exception& e) {
+    showError(QString::fromStdString(e.what()));
+    return false;
+  }
+  return true;
+}
+
+void MainWindow::buildMenus() {
+  QMenu* file = menuBar()->addMenu("&File");
+  file->addAction("&New", QKeySequence::New, this, [this] {
+    m_document.clear();
+    m_undo->clear();
+    m_path.clear();
+    documentChanged();
+  });
+  file->addAction("&Open…", QKeySequence::Open, this, [this] {
+    const QString p = QFileDialog::getOpenFileName(this, "Open sketch", {}, "lafair sketches (*.json)");
+    if (!p.isEmpty()) openFile(p);
+  });
+  file->addAction("&Save", QKeySequence::Save, this, [this] {
+    QString p = m_path;
+    if (p.isEmpty()) p = QFileDialog::getSaveFileName(this, "Save sketch", {}, "lafair sketches (*.json)");
+    if (!p.isEmpty()) saveFile(p);
+  });
+  file->addAction("Save &As…", QKeySequence::SaveAs, this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, "Save sketch", {}, "lafair sketches (*.json)");
+    if (!p.isEmpty()) saveFile(p);
+  });
+  file->addAction("Recover &autosave", this, [this] {
+    if (QFileInfo::exists(autosavePath())) openFile(autosavePath());
+    else showError("no autosaved sketch");
+  });
+  file->addSeparator();
+  file->addAction("&Import points…", this, [this] {
+    const QString p = QFileDialog::getOpenFileName(this, "Import points", {}, "Points (*.csv *.txt *.dat *.json *.svg)");
+    if (!p.isEmpty()) importPoints(p);
+  });
+  file->addAction("&Export curves…", this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, "Export curves", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
+    if (!p.isEmpty()) exportFile(p);
+  });
+  file->addSeparator();
+  file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
+
+  QMenu* edit = menuBar()->addMenu("&Edit");
+  QAction* undo = m_undo->createUndoAction(this, "&Undo");
+  undo->setShortcut(QKeySequence::Undo);
+  QAction* redo = m_undo->createRedoAction(this, "&Redo");
+  redo->setShortcut(QKeySequence::Redo);
+  edit->addAction(undo);
+  edit->addAction(redo);
+
+  QMenu* view = menuBar()->addMenu("&View");
+  auto toggle = [&](const char* name, bool Layers::*flag) {
+    QAction* a = view->addAction(name);
+    a->setCheckable(true);
+    a->setChecked(m_canvas->layers().*flag);
+    connect(a, &QAction::toggled, this, [this, flag](bool on) {
+      m_canvas->layers().*flag = on;
+      m_canvas->update();
+    });
+  };
+  toggle("Raw points", &Layers::raw_points);
+  toggle("LA curve", &Layers::curve);
+  toggle("Curvature comb", &Layers::comb);
+  toggle("Joints, inflections, corners", &Layers::markers);
+  view->addSeparator();
+  view->addAction("&Fit view", QKeySequence(Qt::Key_F), m_canvas, &Canvas::fitView);
+}
+
+}  // namespace la::gui

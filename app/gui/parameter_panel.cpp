@@ -1,0 +1,71 @@
+#include "app/gui/parameter_panel.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QSpinBox>
+#include <cmath>
+
+namespace la::gui {
+
+ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
+  auto* form = new QFormLayout(this);
+  m_tolerance = new QDoubleSpinBox;
+  m_tolerance->setRange(0.01, 10.0);
+  m_tolerance->setDecimals(2);
+  m_tolerance->setSingleStep(0.05);
+  m_tolerance->setSuffix(" % of size");
+  m_tolerance->setToolTip("Largest distance of the curve from the points, relative to the stroke's bounding-box diagonal");
+  form->addRow("Tolerance", m_tolerance);
+  m_max_extrema = new QSpinBox;
+  m_max_extrema->setRange(-1, 50);
+  m_max_extrema->setSpecialValueText("all significant");
+  m_max_extrema->setToolTip("Simplify: keep at most this many curvature extrema");
+  form->addRow("Max extrema", m_max_extrema);
+  m_g2 = new QComboBox;
+  m_g2->addItem("Newton (all joints)", static_cast<int>(G2Method::kNewton));
+  m_g2->addItem("Bisection (joint by joint)", static_cast<int>(G2Method::kBisection));
+  m_g2->addItem("Off (G1 only)", static_cast<int>(G2Method::kOff));
+  form->addRow("G2 method", m_g2);
+  m_threshold = new QDoubleSpinBox;
+  m_threshold->setRange(-12, -2);
+  m_threshold->setDecimals(1);
+  m_threshold->setPrefix("1e");
+  m_threshold->setToolTip("Relative curvature gap allowed at a joint");
+  form->addRow("G2 threshold", m_threshold);
+  m_corners = new QCheckBox("keep sharp corners");
+  form->addRow("", m_corners);
+  setOptions(FitOptions{});
+  auto changed = [this] {
+    if (!m_updating) emit optionsChanged(options());
+  };
+  connect(m_tolerance, &QDoubleSpinBox::valueChanged, this, changed);
+  connect(m_max_extrema, &QSpinBox::valueChanged, this, changed);
+  connect(m_g2, &QComboBox::currentIndexChanged, this, changed);
+  connect(m_threshold, &QDoubleSpinBox::valueChanged, this, changed);
+  connect(m_corners, &QCheckBox::toggled, this, changed);
+}
+
+void ParameterPanel::setOptions(const FitOptions& o) {
+  m_updating = true;
+  m_base = o;
+  m_tolerance->setValue(100.0 * o.tolerance_fraction);
+  m_max_extrema->setValue(o.segmentation.max_extrema);
+  m_g2->setCurrentIndex(m_g2->findData(static_cast<int>(o.g2)));
+  m_threshold->setValue(std::log10(o.g2_threshold));
+  m_corners->setChecked(o.cleanup.detect_corners);
+  m_updating = false;
+}
+
+FitOptions ParameterPanel::options() const {
+  FitOptions o = m_base;
+  o.tolerance_fraction = m_tolerance->value() / 100.0;
+  o.segmentation.max_extrema = m_max_extrema->value();
+  o.g2 = static_cast<G2Method>(m_g2->currentData().toInt());
+  o.g2_threshold = std::pow(10.0, m_threshold->value());
+  o.cleanup.detect_corners = m_corners->isChecked();
+  return o;
+}
+
+}  // namespace la::gui

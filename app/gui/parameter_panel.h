@@ -1,0 +1,36 @@
+#pragma once
+// The fit parameters the user steers: tolerance, maximum number of curvature extrema,
+// G2 method and threshold, corner detection. Emits optionsChanged on every edit.
+
+#include <QWidget>
+
+#include "fitting/pipeline.h"
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QSpinBox;
+
+namespace la::gui {
+
+class ParameterPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit ParameterPanel(QWidget* parent = nullptr);
+  void setOptions(const FitOptions& options);  // without emitting
+  FitOptions options() const;
+
+ signals:
+  void optionsChanged(const la::FitOptions& options);
+
+ private:
+  QDoubleSpinBox* m_tolerance = nullptr;  // percent of the stroke's diagonal
+  QSpinBox* m_max_extrema = nullptr;      // -1: all significant
+  QComboBox* m_g2 = nullptr;
+  QDoubleSpinBox* m_threshold = nullptr;  // log10 of the relative G2 gap
+  QCheckBox* m_corners = nullptr;
+  FitOptions m_base;                      // the options not on the panel
+  bool m_updating = false;
+};
+
+}  // namespace la::gui

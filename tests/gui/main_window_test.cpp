@@ -1,0 +1,180 @@
+// GUI tests of the application window (app/gui), run offscreen: strokes drawn with
+// synthesized mouse and tablet events are fitted; undo/redo; parameter changes refit;
+// save and reopen; import and export of every file type; bad files give an error, not a
+// crash. One test saves a screenshot of the window with a fitted stroke (the README's).
+
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QFile>
+#include <QPointingDevice>
+#include <QTabletEvent>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QUndoStack>
+#include <cmath>
+
+#include "app/gui/canvas.h"
+#include "app/gui/main_window.h"
+#include "app/gui/parameter_panel.h"
+
+namespace la::gui {
+namespace {
+
+// A wavy stroke across the canvas in widget coordinates.
+std::vector<QPoint> wave(int n = 120) {
+  std::vector<QPoint> pts;
+  for (int i = 0; i < n; ++i) {
+    const double x = 60 + 5.0 * i;
+    pts.emplace_back(static_cast<int>(x), static_cast<int>(300 + 90 * std::sin(x / 110.0)));
+  }
+  return pts;
+}
+
+void drawWithMouse(QWidget* canvas, const std::vector<QPoint>& pts) {
+  QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, pts.front());
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    QMouseEvent move(QEvent::MouseMove, pts[i], canvas->mapToGlobal(pts[i]), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(canvas, &move);
+  }
+  QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, pts.back());
+}
+
+void drawWithPen(QWidget* canvas, const std::vector<QPoint>& pts) {
+  const QPointingDevice* pen = QPointingDevice::primaryPointingDevice();
+  auto send = [&](QEvent::Type type, QPointF pos, double pressure) {
+    QTabletEvent e(type, pen, pos, canvas->mapToGlobal(pos), pressure, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+                   Qt::NoModifier, type == QEvent::TabletRelease ? Qt::NoButton : Qt::LeftButton, Qt::LeftButton);
+    QApplication::sendEvent(canvas, &e);
+  };
+  send(QEvent::TabletPress, pts.front(), 0.3);
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) send(QEvent::TabletMove, pts[i], 0.3 + 0.4 * i / pts.size());
+  send(QEvent::TabletRelease, pts.back(), 0.0);
+}
+
+class MainWindowTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    qputenv("LAFAIR_NO_DIALOGS", "1");  // errors go to the status bar, not a modal box
+    window = std::make_unique<MainWindow>();
+    window->resize(1100, 760);
+    window->show();
+    ASSERT_TRUE(dir.isValid());
+  }
+  const FitResult& lastFit() {
+    const auto& s = window->document().strokes();
+    EXPECT_FALSE(s.empty());
+    EXPECT_TRUE(s.back().fit.has_value()) << s.back().error;
+    return *s.back().fit;
+  }
+  std::unique_ptr<MainWindow> window;
+  QTemporaryDir dir;
+};
+
+TEST_F(MainWindowTest, MouseStrokeIsFittedG2) {
+  drawWithMouse(window->canvas(), wave());
+  ASSERT_EQ(window->document().strokes().size(), 1u);
+  const FitResult& r = lastFit();
+  EXPECT_GE(r.quality.segments, 1);
+  EXPECT_LT(r.quality.g2_gap, 1e-6) << "curvature continuous at every joint";
+  EXPECT_LE(r.quality.max_dev, r.tolerance * (1 + 1e-9));
+}
+
+TEST_F(MainWindowTest, PenStrokeKeepsPressureAndTime) {
+  drawWithPen(window->canvas(), wave(80));
+  ASSERT_EQ(window->document().strokes().size(), 1u);
+  const Stroke& raw = window->document().strokes()[0].raw;
+  ASSERT_GE(raw.samples.size(), 70u);
+  EXPECT_NEAR(raw.samples.front().pressure, 0.3, 1e-6);
+  EXPECT_GT(raw.samples[40].pressure, raw.samples.front().pressure);
+  EXPECT_TRUE(lastFit().quality.g2_gap < 1e-6);
+}
+
+TEST_F(MainWindowTest, UndoRedoAndParameterChangeRefits) {
+  drawWithMouse(window->canvas(), wave());
+  drawWithMouse(window->canvas(), wave(60));
+  EXPECT_EQ(window->document().strokes().size(), 2u);
+  window->undoStack()->undo();
+  EXPECT_EQ(window->document().strokes().size(), 1u);
+  window->undoStack()->redo();
+  EXPECT_EQ(window->document().strokes().size(), 2u);
+  const int before = lastFit().quality.segments;
+  FitOptions o = window->document().options();
+  o.g2 = G2Method::kOff;
+  window->parameters()->setOptions(o);
+  emit window->parameters()->optionsChanged(o);
+  EXPECT_EQ(window->document().options().g2, G2Method::kOff);
+  EXPECT_EQ(lastFit().quality.segments, before);  // same pieces, just not G2 now
+  window->undoStack()->undo();
+  EXPECT_EQ(window->document().options().g2, G2Method::kNewton);
+  EXPECT_LT(lastFit().quality.g2_gap, 1e-6);
+}
+
+TEST_F(MainWindowTest, SaveAndReopenGivesTheSameCurves) {
+  drawWithMouse(window->canvas(), wave());
+  const QString path = dir.filePath("sketch.lafair.json");
+  ASSERT_TRUE(window->saveFile(path));
+  const Curve saved = lastFit().curve;
+  MainWindow other;
+  ASSERT_TRUE(other.openFile(path));
+  ASSERT_EQ(other.document().strokes().size(), 1u);
+  const Curve& reopened = other.document().strokes()[0].fit->curve;
+  ASSERT_EQ(reopened.pieces.size(), saved.pieces.size());
+  for (std::size_t i = 0; i < saved.pieces.size(); ++i) {
+    EXPECT_DOUBLE_EQ(reopened.pieces[i].segment.length(), saved.pieces[i].segment.length());
+    EXPECT_DOUBLE_EQ(reopened.pieces[i].segment.kappaEnd(), saved.pieces[i].segment.kappaEnd());
+  }
+}
+
+TEST_F(MainWindowTest, ImportEveryFileTypeAndExportEveryFormat) {
+  const QString data = QString(LAFAIR_SHARED_DATA_DIR);
+  for (const char* f : {"/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv", "/curves/airfoils/clark-y.dat",
+                        "/curves/kanjivg/0306e.svg"})
+    EXPECT_TRUE(window->importPoints(data + f)) << f;
+  EXPECT_EQ(window->document().strokes().size(), 4u);  // 2 + 1 + 1
+  for (const char* ext : {"svg", "dxf", "json", "csv"}) {
+    const QString out = dir.filePath(QString("curves.") + ext);
+    EXPECT_TRUE(window->exportFile(out)) << ext;
+    EXPECT_GT(QFile(out).size(), 100) << ext;
+  }
+}
+
+TEST_F(MainWindowTest, BadFilesGiveAnErrorAndKeepTheSketch) {
+  drawWithMouse(window->canvas(), wave());
+  const QString bad = dir.filePath("bad.csv");
+  QFile f(bad);
+  ASSERT_TRUE(f.open(QIODevice::WriteOnly));
+  f.write("1,2\n3,oops\n");
+  f.close();
+  EXPECT_FALSE(window->importPoints(bad));
+  EXPECT_FALSE(window->openFile(bad));
+  EXPECT_FALSE(window->openFile(dir.filePath("missing.json")));
+  EXPECT_EQ(window->document().strokes().size(), 1u) << "the sketch is still there";
+}
+
+TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
+  window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
+  QApplication::processEvents();
+  const QImage shot = window->grab().toImage();
+  ASSERT_FALSE(shot.isNull());
+  const QString path = QString(LAFAIR_BINARY_DIR) + "/lafair-window.png";
+  EXPECT_TRUE(shot.save(path)) << path.toStdString();
+  // the curve is drawn: some pixels have the curve's blue
+  int blue = 0;
+  for (int y = 0; y < shot.height(); y += 2)
+    for (int x = 0; x < shot.width(); x += 2) {
+      const QColor c = shot.pixelColor(x, y);
+      if (c.blue() > 150 && c.red() < 60 && c.green() < 140) ++blue;
+    }
+  EXPECT_GT(blue, 100) << "no curve pixels in the screenshot";
+}
+
+}  // namespace
+}  // namespace la::gui
+
+int main(int argc, char** argv) {
+  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  QApplication app(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
