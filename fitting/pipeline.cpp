@@ -562,6 +562,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);
+      fit.reports[i].spline = fit.spline ? static_cast<int>(r.splines.size()) : -1;
       r.pieces.push_back(fit.reports[i]);
     }
     if (fit.spline) r.splines.push_back(*fit.spline);

@@ -49,6 +49,7 @@ struct PieceReport {
   double alpha = 0.0;         // alpha used (moved into the feasible range if needed)
   bool alpha_moved = false;
   int part = 0;               // which corner-to-corner part it belongs to
+  int spline = -1;            // index into FitResult::splines of that part's spline (-1: a straight part)
 };
 
 /// Wall time per stage. Stage 5 (one LA segment per piece) has no line of its own:

@@ -60,6 +60,17 @@ void Canvas::fitView() {
   update();
 }
 
+void Canvas::setPreview(std::optional<FitResult> preview) {
+  m_preview = std::move(preview);
+  update();
+}
+
+void Canvas::setSelection(int stroke, int piece) {
+  m_selected_stroke = stroke;
+  m_selected_piece = piece;
+  update();
+}
+
 void Canvas::beginStroke(const QPointF& pos, double pressure, double time_ms) {
   m_drawing = true;
   m_current = Stroke();
@@ -75,12 +86,14 @@ void Canvas::extendStroke(const QPointF& pos, double pressure, double time_ms) {
   s.pressure = pressure;
   m_current.samples.push_back(s);
   update();  // painting happens in paintEvent, never here
+  emit strokeProgress();
 }
 
 void Canvas::endStroke() {
   m_drawing = false;
   const Stroke finished = m_current;
   m_current = Stroke();
+  m_preview.reset();
   if (finished.samples.size() >= 2) emit strokeFinished(finished);
   update();
 }
@@ -107,6 +120,23 @@ void Canvas::mousePressEvent(QMouseEvent* e) {
     m_pan_anchor = e->position();
   } else if (e->button() == Qt::LeftButton) {
     beginStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
+  } else if (e->button() == Qt::RightButton && m_document) {
+    // select the segment nearest the click (within 12 pixels)
+    double best = 12.0;
+    int best_stroke = -1, best_piece = -1;
+    for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
+      const auto& fit = m_document->strokes()[k].fit;
+      if (!fit) continue;
+      for (std::size_t i = 0; i < fit->curve.pieces.size(); ++i) {
+        const CurveSamples smp = fit->curve.pieces[i].segment.sample(48);
+        for (const Vec2& q : smp.point) {
+          const double d = std::hypot(toWidget(q).x() - e->position().x(), toWidget(q).y() - e->position().y());
+          if (d < best) best = d, best_stroke = static_cast<int>(k), best_piece = static_cast<int>(i);
+        }
+      }
+    }
+    setSelection(best_stroke, best_piece);
+    emit segmentClicked(best_stroke, best_piece);
   }
 }
 
@@ -140,14 +170,36 @@ void Canvas::wheelEvent(QWheelEvent* e) {
   update();
 }
 
-void Canvas::paintCurve(QPainter& p, const FitResult& fit) const {
+void Canvas::paintCurve(QPainter& p, const FitResult& fit, int selected_piece) const {
   const Curve& curve = fit.curve;
+  if (m_layers.spline) {
+    p.setPen(QPen(QColor(46, 160, 67), 1.2, Qt::DashLine));
+    for (const CubicBSpline& s : fit.splines) {
+      QPolygonF line;
+      for (int k = 0; k <= 400; ++k) {
+        const Vec2 q = s.point(s.tMin() + (s.tMax() - s.tMin()) * k / 400.0);
+        line << toWidget(q);
+      }
+      p.drawPolyline(line);
+    }
+  }
   double kmax = 0.0;
   for (const CurvePiece& piece : curve.pieces)
     kmax = std::max({kmax, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
   const double comb_world = kmax > 0 ? m_layers.comb_scale * std::min(width(), height()) / m_view.m11() / kmax : 0.0;
-  for (const CurvePiece& piece : curve.pieces) {
+  for (std::size_t index = 0; index < curve.pieces.size(); ++index) {
+    const CurvePiece& piece = curve.pieces[index];
     const LaSegment& seg = piece.segment;
+    if (m_layers.triangles && std::abs(seg.turning()) > 1e-9) {
+      // Q1 where the end tangents meet
+      const Vec2 a = seg.start(), b = seg.end(), u = seg.tangent(0.0), v = seg.tangent(seg.length());
+      const double det = cross(u, v);
+      if (std::abs(det) > 1e-12) {
+        const Vec2 q1 = a + (cross(b - a, v) / det) * u;
+        p.setPen(QPen(QColor(120, 60, 170), 1.0, Qt::DotLine));
+        p.drawPolyline(QPolygonF({toWidget(a), toWidget(q1), toWidget(b)}));
+      }
+    }
     if (m_layers.comb && comb_world > 0) {
       const CurveSamples teeth = seg.sample(std::max(2, m_layers.comb_density));
       p.setPen(QPen(kCombColor, 1.0));
@@ -165,7 +217,8 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit) const {
       const CurveSamples smp = seg.sample(n);
       QPolygonF line;
       for (const Vec2& q : smp.point) line << toWidget(q);
-      p.setPen(QPen(kCurveColor, 2.2));
+      p.setPen(QPen(static_cast<int>(index) == selected_piece ? QColor(255, 143, 0) : kCurveColor,
+                    static_cast<int>(index) == selected_piece ? 3.5 : 2.2));
       p.drawPolyline(line);
     }
     if (m_layers.markers) {
@@ -188,15 +241,17 @@ void Canvas::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
   if (m_document) {
-    for (const DocumentStroke& s : m_document->strokes()) {
+    for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
+      const DocumentStroke& s = m_document->strokes()[k];
       if (m_layers.raw_points || !s.fit) {
         p.setPen(Qt::NoPen);
         p.setBrush(kRawColor);
         for (const StrokeSample& q : s.raw.samples) p.drawEllipse(toWidget(q.p), 1.8, 1.8);
       }
-      if (s.fit) paintCurve(p, *s.fit);
+      if (s.fit) paintCurve(p, *s.fit, static_cast<int>(k) == m_selected_stroke ? m_selected_piece : -1);
     }
   }
+  if (m_preview) paintCurve(p, *m_preview, -1);
   if (!m_current.samples.empty()) {  // the stroke in progress, as ink
     QPolygonF ink;
     for (const StrokeSample& q : m_current.samples) ink << toWidget(q.p);

@@ -8,6 +8,7 @@
 #include <QPointF>
 #include <QTransform>
 #include <QWidget>
+#include <optional>
 
 #include "app/gui/document.h"
 
@@ -15,9 +16,11 @@ namespace la::gui {
 
 struct Layers {
   bool raw_points = true;
+  bool spline = false;  // the smoothed B-spline (stage 2)
   bool curve = true;
   bool comb = true;
   bool markers = true;  // joints, inflections, extrema
+  bool triangles = false;  // each segment's control triangle
   double comb_scale = 0.08;  // longest tooth, relative to the view's shorter side
   int comb_density = 24;     // teeth per segment
 };
@@ -31,10 +34,17 @@ class Canvas : public QWidget {
   void fitView();  // zoom to show every stroke
   QPointF toWorld(const QPointF& widget_point) const;
   QPointF toWidget(const Vec2& world) const;
+  /// The live fit of the stroke being drawn (shown until the pen lifts), or none.
+  void setPreview(std::optional<FitResult> preview);
+  bool hasPreview() const { return m_preview.has_value(); }
+  const Stroke& currentStroke() const { return m_current; }
+  void setSelection(int stroke, int piece);
 
  signals:
   void strokeFinished(const la::Stroke& stroke);
+  void strokeProgress();
   void cursorMoved(const QPointF& world);
+  void segmentClicked(int stroke, int piece);  // right click near a segment
 
  protected:
   void paintEvent(QPaintEvent*) override;
@@ -48,7 +58,7 @@ class Canvas : public QWidget {
   void beginStroke(const QPointF& pos, double pressure, double time_ms);
   void extendStroke(const QPointF& pos, double pressure, double time_ms);
   void endStroke();
-  void paintCurve(QPainter& p, const FitResult& fit) const;
+  void paintCurve(QPainter& p, const FitResult& fit, int selected_piece) const;
 
   const Document* m_document = nullptr;
   Layers m_layers;
@@ -58,6 +68,8 @@ class Canvas : public QWidget {
   QPointF m_pan_anchor;
   Stroke m_current;           // the stroke being drawn, in world coordinates
   qint64 m_stroke_start_ms = 0;
+  std::optional<FitResult> m_preview;
+  int m_selected_stroke = -1, m_selected_piece = -1;
 };
 
 }  // namespace la::gui

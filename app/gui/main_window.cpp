@@ -1,6 +1,12 @@
 #include "app/gui/main_window.h"
 
 #include <QAction>
+#include <QDateTime>
+#include <QElapsedTimer>
+#include <QHBoxLayout>
+#include <QInputDialog>
+#include <QPainter>
+#include <QSettings>
 #include <QApplication>
 #include <QDir>
 #include <QDockWidget>
@@ -17,6 +23,7 @@
 
 #include "app/gui/canvas.h"
 #include "app/gui/curvature_plot.h"
+#include "app/gui/lcg_plot.h"
 #include "app/gui/parameter_panel.h"
 #include "app/io/curve_export.h"
 #include "app/io/point_file.h"
@@ -27,6 +34,12 @@ namespace la::gui {
 namespace {
 
 constexpr int kAutosaveMs = 20000;
+// Live preview: refit the stroke being drawn at most this often, and never more often
+// than every kPreviewCostFactor fit-times, so the pen never waits for the fit.
+constexpr int kPreviewMinIntervalMs = 30;
+constexpr double kPreviewCostFactor = 4.0;
+constexpr int kPreviewMinPoints = 8;
+constexpr int kRecentFiles = 8;
 
 class AddStrokeCommand : public QUndoCommand {
  public:
@@ -79,6 +92,12 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   plot_dock->setWidget(m_plot);
   addDockWidget(Qt::BottomDockWidgetArea, plot_dock);
 
+  m_lcg = new LcgPlot;
+  auto* lcg_dock = new QDockWidget("LCG of the selected segment (right-click a segment)", this);
+  lcg_dock->setObjectName("lcg-plot");
+  lcg_dock->setWidget(m_lcg);
+  addDockWidget(Qt::RightDockWidgetArea, lcg_dock);
+
   m_parameters = new ParameterPanel;
   auto* param_dock = new QDockWidget("Fit parameters", this);
   param_dock->setObjectName("parameters");
@@ -89,6 +108,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   statusBar()->addWidget(m_status, 1);
 
   connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::addStroke);
+  connect(m_canvas, &Canvas::strokeProgress, this, &MainWindow::updatePreview);
+  connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
   connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
     m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
   });
@@ -116,6 +137,77 @@ void MainWindow::autosave() {
 
 void MainWindow::addStroke(const Stroke& stroke) { m_undo->push(new AddStrokeCommand(this, stroke)); }
 
+void MainWindow::updatePreview() {
+  const Stroke& current = m_canvas->currentStroke();
+  const qint64 now = QDateTime::currentMSecsSinceEpoch();
+  if (static_cast<int>(current.samples.size()) < kPreviewMinPoints ||
+      now - m_preview_at < std::max<qint64>(kPreviewMinIntervalMs, static_cast<qint64>(kPreviewCostFactor * m_preview_ms)))
+    return;
+  QElapsedTimer clock;
+  clock.start();
+  try {
+    m_canvas->setPreview(fitStroke(current, m_document.options()));
+  } catch (const StrokeError&) {
+    m_canvas->setPreview(std::nullopt);  // too few points yet
+  }
+  m_preview_ms = static_cast<double>(clock.nsecsElapsed()) * 1e-6;
+  m_preview_at = QDateTime::currentMSecsSinceEpoch();
+}
+
+void MainWindow::selectSegment(int stroke, int piece) {
+  m_selected_stroke = stroke;
+  m_selected_piece = piece;
+  const auto& strokes = m_document.strokes();
+  const FitResult* fit = (stroke >= 0 && stroke < static_cast<int>(strokes.size()) && strokes[stroke].fit) ? &*strokes[stroke].fit : nullptr;
+  m_lcg->setSegment(fit, piece);
+  m_canvas->setSelection(stroke, piece);
+  if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
+  if (fit && piece >= 0) {
+    const LaSegment& seg = fit->curve.pieces[piece].segment;
+    m_status->setText(QString("segment %1 of stroke %2: alpha %3, length %4, curvature %5 → %6, %7")
+                          .arg(piece + 1).arg(stroke + 1).arg(seg.alpha(), 0, 'g', 3).arg(seg.length(), 0, 'g', 4)
+                          .arg(seg.kappaStart(), 0, 'g', 3).arg(seg.kappaEnd(), 0, 'g', 3)
+                          .arg(toString(fit->pieces[piece].kind)));
+  }
+}
+
+void MainWindow::rememberRecent(const QString& path) {
+  QSettings settings;
+  QStringList files = settings.value("recent").toStringList();
+  files.removeAll(path);
+  files.prepend(path);
+  while (files.size() > kRecentFiles) files.removeLast();
+  settings.setValue("recent", files);
+  refreshRecentMenu();
+}
+
+void MainWindow::refreshRecentMenu() {
+  if (!m_recent) return;
+  m_recent->clear();
+  for (const QString& f : QSettings().value("recent").toStringList())
+    m_recent->addAction(QFileInfo(f).fileName(), this, [this, f] { openFile(f); });
+  m_recent->setEnabled(!m_recent->isEmpty());
+}
+
+bool MainWindow::exportPng(const QString& path) {
+  const QPixmap canvas = m_canvas->grab(), plot = m_plot->grab(), lcg = m_lcg->grab();
+  QImage out(canvas.width() + std::max(plot.width(), lcg.width()), std::max(canvas.height(), plot.height() + lcg.height()),
+             QImage::Format_RGB32);
+  out.fill(Qt::white);
+  QPainter painter(&out);
+  painter.drawPixmap(0, 0, canvas);
+  painter.drawPixmap(canvas.width(), 0, plot);
+  painter.drawPixmap(canvas.width(), plot.height(), lcg);
+  painter.end();
+  const QString tmp = path + ".part";  // written whole, then renamed over the target
+  if (!out.save(tmp, "PNG") || (QFile::exists(path) && !QFile::remove(path)) || !QFile::rename(tmp, path)) {
+    QFile::remove(tmp);
+    showError("cannot write " + path);
+    return false;
+  }
+  return true;
+}
+
 void MainWindow::documentChanged() {
   m_dirty = true;
   m_canvas->update();
@@ -123,6 +215,7 @@ void MainWindow::documentChanged() {
   for (const DocumentStroke& s : m_document.strokes())
     if (s.fit) last = &*s.fit;
   m_plot->setFit(last);
+  selectSegment(-1, -1);
   if (!last) {
     m_status->setText(m_document.strokes().empty() ? "no strokes" : "the last stroke could not be fitted");
     return;
@@ -158,6 +251,7 @@ bool MainWindow::openFile(const QString& path) {
   documentChanged();
   m_dirty = false;
   m_canvas->fitView();
+  if (path != autosavePath()) rememberRecent(path);
   return true;
 }
 
@@ -171,6 +265,7 @@ bool MainWindow::saveFile(const QString& path) {
   m_path = path;
   m_dirty = false;
   m_undo->setClean();
+  rememberRecent(path);
   return true;
 }
 
@@ -246,6 +341,8 @@ void MainWindow::buildMenus() {
     const QString p = QFileDialog::getSaveFileName(this, "Save sketch", {}, "lafair sketches (*.json)");
     if (!p.isEmpty()) saveFile(p);
   });
+  m_recent = file->addMenu("Open &recent");
+  refreshRecentMenu();
   file->addAction("Recover &autosave", this, [this] {
     if (QFileInfo::exists(autosavePath())) openFile(autosavePath());
     else showError("no autosaved sketch");
@@ -258,6 +355,10 @@ void MainWindow::buildMenus() {
   file->addAction("&Export curves…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export curves", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
     if (!p.isEmpty()) exportFile(p);
+  });
+  file->addAction("Export &picture (PNG)…", this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, "Export picture", {}, "PNG (*.png)");
+    if (!p.isEmpty()) exportPng(p);
   });
   file->addSeparator();
   file->addAction("&Quit", QKeySequence::Quit, this, &QWidget::close);
@@ -281,9 +382,21 @@ void MainWindow::buildMenus() {
     });
   };
   toggle("Raw points", &Layers::raw_points);
+  toggle("Smoothed B-spline", &Layers::spline);
   toggle("LA curve", &Layers::curve);
   toggle("Curvature comb", &Layers::comb);
   toggle("Joints, inflections, corners", &Layers::markers);
+  toggle("Control triangles", &Layers::triangles);
+  view->addAction("Comb &scale…", this, [this] {
+    bool ok = false;
+    const double v = QInputDialog::getDouble(this, "Comb scale", "Longest tooth (fraction of the view)", m_canvas->layers().comb_scale, 0.005, 1.0, 3, &ok);
+    if (ok) m_canvas->layers().comb_scale = v, m_canvas->update();
+  });
+  view->addAction("Comb &density…", this, [this] {
+    bool ok = false;
+    const int v = QInputDialog::getInt(this, "Comb density", "Teeth per segment", m_canvas->layers().comb_density, 2, 400, 1, &ok);
+    if (ok) m_canvas->layers().comb_density = v, m_canvas->update();
+  });
   view->addSeparator();
   view->addAction("&Fit view", QKeySequence(Qt::Key_F), m_canvas, &Canvas::fitView);
 }

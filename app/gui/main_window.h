@@ -10,6 +10,7 @@
 #include "app/gui/document.h"
 
 class QLabel;
+class QMenu;
 class QTimer;
 class QUndoStack;
 
@@ -17,6 +18,7 @@ namespace la::gui {
 
 class Canvas;
 class CurvaturePlot;
+class LcgPlot;
 class ParameterPanel;
 
 class MainWindow : public QMainWindow {
@@ -27,6 +29,8 @@ class MainWindow : public QMainWindow {
   Canvas* canvas() const { return m_canvas; }
   QUndoStack* undoStack() const { return m_undo; }
   ParameterPanel* parameters() const { return m_parameters; }
+  int selectedStroke() const { return m_selected_stroke; }
+  int selectedPiece() const { return m_selected_piece; }
 
   // The file actions without dialogs (the dialogs call these); errors are shown in a
   // message box and returned as false, never thrown.
@@ -34,6 +38,7 @@ class MainWindow : public QMainWindow {
   bool saveFile(const QString& path);
   bool importPoints(const QString& path);
   bool exportFile(const QString& path);  // format from the extension: svg, dxf, json, csv
+  bool exportPng(const QString& path);   // the canvas and the plots, side by side
   QString autosavePath() const;
 
   /// Records a stroke (as the canvas does on pen-up), undoably.
@@ -45,10 +50,19 @@ class MainWindow : public QMainWindow {
   void buildMenus();
   void showError(const QString& what);
   void autosave();
+  void updatePreview();  // live fit of the stroke being drawn, as often as time allows
+  void selectSegment(int stroke, int piece);
+  void rememberRecent(const QString& path);
+  void refreshRecentMenu();
 
   Document m_document;
   Canvas* m_canvas = nullptr;
   CurvaturePlot* m_plot = nullptr;
+  LcgPlot* m_lcg = nullptr;
+  QMenu* m_recent = nullptr;
+  int m_selected_stroke = -1, m_selected_piece = -1;
+  double m_preview_ms = 0.0;   // time of the last live fit
+  qint64 m_preview_at = 0;     // when it ran (ms since epoch)
   ParameterPanel* m_parameters = nullptr;
   QUndoStack* m_undo = nullptr;
   QLabel* m_status = nullptr;

@@ -152,8 +152,41 @@ TEST_F(MainWindowTest, BadFilesGiveAnErrorAndKeepTheSketch) {
   EXPECT_EQ(window->document().strokes().size(), 1u) << "the sketch is still there";
 }
 
+TEST_F(MainWindowTest, LivePreviewWhileThePenMoves) {
+  Canvas* canvas = window->canvas();
+  const auto pts = wave(60);
+  QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, pts.front());
+  for (std::size_t i = 1; i < pts.size(); ++i) {
+    QMouseEvent move(QEvent::MouseMove, pts[i], canvas->mapToGlobal(pts[i]), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(canvas, &move);
+  }
+  EXPECT_TRUE(canvas->hasPreview()) << "no live fit while drawing";
+  EXPECT_TRUE(window->document().strokes().empty()) << "nothing is added before pen-up";
+  QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, pts.back());
+  EXPECT_FALSE(canvas->hasPreview());
+  EXPECT_EQ(window->document().strokes().size(), 1u);
+}
+
+TEST_F(MainWindowTest, RightClickSelectsASegmentAndPngExport) {
+  drawWithMouse(window->canvas(), wave());
+  const LaSegment& seg = lastFit().curve.pieces.front().segment;
+  const QPointF on_curve = window->canvas()->toWidget(seg.position(0.5 * seg.length()));
+  QTest::mouseClick(window->canvas(), Qt::RightButton, Qt::NoModifier, on_curve.toPoint());
+  EXPECT_EQ(window->selectedStroke(), 0);
+  EXPECT_EQ(window->selectedPiece(), 0) << "the click was on the first segment";
+  const QString png = dir.filePath("picture.png");
+  EXPECT_TRUE(window->exportPng(png));
+  EXPECT_FALSE(QImage(png).isNull());
+}
+
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
+  QApplication::processEvents();
+  {  // select a segment, so the LCG dock shows something
+    const LaSegment& seg = window->document().strokes().back().fit->curve.pieces[2].segment;
+    QTest::mouseClick(window->canvas(), Qt::RightButton, Qt::NoModifier,
+                      window->canvas()->toWidget(seg.position(0.5 * seg.length())).toPoint());
+  }
   QApplication::processEvents();
   const QImage shot = window->grab().toImage();
   ASSERT_FALSE(shot.isNull());
