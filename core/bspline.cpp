@@ -144,6 +144,15 @@ double CubicBSpline::curvature(double t) const {
   return cross(d[1], d[2]) / (speed * speed * speed);
 }
 
+void CubicBSpline::curvatureAndSlope(double t, double& kappa, double& dkappa_ds) const {
+  // kappa = (C1 x C2) / |C1|^3 and dkappa/dt = ((C1 x C3) |C1|^2 - 3 (C1 x C2)(C1 . C2)) / |C1|^5,
+  // Ck the k-th derivative in t; dkappa/ds = dkappa/dt / |C1|.
+  const auto d = derivatives(t, 3);
+  const double sp2 = d[1].squaredNorm(), sp = std::sqrt(sp2), cr = cross(d[1], d[2]);
+  kappa = cr / (sp2 * sp);
+  dkappa_ds = (cross(d[1], d[3]) * sp2 - 3.0 * cr * d[1].dot(d[2])) / (sp2 * sp2 * sp) / sp;
+}
+
 std::array<Vec2, 4> CubicBSpline::spanPolynomial(int i) const {
   const double t0 = knots_[i];
   double ders[4][4];

@@ -56,6 +56,8 @@ class CubicBSpline {
   std::array<Vec2, 4> derivatives(double t, int order = 3) const;
   /// Signed curvature at t.
   double curvature(double t) const;
+  /// Signed curvature and its derivative with respect to arc length at t.
+  void curvatureAndSlope(double t, double& kappa, double& dkappa_ds) const;
 
   /// Taylor coefficients of span i about its start knot: C(t) = sum_k c[k] (t - knots[i])^k.
   std::array<Vec2, 4> spanPolynomial(int span) const;

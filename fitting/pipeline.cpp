@@ -120,13 +120,10 @@ LcgFit lcgOfPiece(const CubicBSpline& s, double t0, double t1) {
   std::vector<double> kappa, dkappa;
   const int first = static_cast<int>(kLcgTrim * kLcgSamples), last = kLcgSamples - first;
   for (int k = first; k < last; ++k) {
-    const double t = t0 + (t1 - t0) * (k + 0.5) / kLcgSamples;
-    const auto d = s.derivatives(t, 3);
-    const double sp2 = d[1].squaredNorm(), sp = std::sqrt(sp2);
-    const double cr = cross(d[1], d[2]);
-    kappa.push_back(cr / (sp2 * sp));
-    const double dk_dt = (cross(d[1], d[3]) * sp2 - 3.0 * cr * d[1].dot(d[2])) / (sp2 * sp2 * sp);
-    dkappa.push_back(dk_dt / sp);
+    double k_t, dk_t;
+    s.curvatureAndSlope(t0 + (t1 - t0) * (k + 0.5) / kLcgSamples, k_t, dk_t);
+    kappa.push_back(k_t);
+    dkappa.push_back(dk_t);
   }
   return fitLcg(lcgFromDerivative(kappa, dkappa));
 }

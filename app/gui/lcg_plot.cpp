@@ -35,11 +35,10 @@ void LcgPlot::setSegment(const FitResult* fit, int piece) {
       const CubicBSpline& s = fit->splines[rep.spline];
       std::vector<double> ks, dks;
       for (int i = 1; i < kSamples - 1; ++i) {
-        const double t = s.wrap(rep.t0 + (rep.t1 - rep.t0) * i / (kSamples - 1));
-        const auto d = s.derivatives(t, 3);
-        const double sp2 = d[1].squaredNorm(), sp = std::sqrt(sp2), cr = cross(d[1], d[2]);
-        ks.push_back(cr / (sp2 * sp));
-        dks.push_back((cross(d[1], d[3]) * sp2 - 3.0 * cr * d[1].dot(d[2])) / (sp2 * sp2 * sp) / sp);
+        double k_t, dk_t;
+        s.curvatureAndSlope(s.wrap(rep.t0 + (rep.t1 - rep.t0) * i / (kSamples - 1)), k_t, dk_t);
+        ks.push_back(k_t);
+        dks.push_back(dk_t);
       }
       const std::vector<LcgPoint> pts = lcgFromDerivative(ks, dks);
       for (const LcgPoint& p : pts) m_data.emplace_back(p.log_rho, p.log_rho_ds_drho);

@@ -60,21 +60,24 @@ void BM_StageCleanup(benchmark::State& state) {
 }
 BENCHMARK(BM_StageCleanup)->Unit(benchmark::kMicrosecond);
 
-void BM_StageSmoothing(benchmark::State& state) {
-  const CleanStroke clean = cleanStroke(chainStroke(1000));
+// The pipeline's defaults for this stroke: 0.5% tolerance, the noise it was made with.
+SmoothingOptions smoothingOptions(const CleanStroke& clean) {
   SmoothingOptions options;
   options.tolerance = 0.005 * clean.diagonal;
   options.noise_sigma = 0.001 * clean.diagonal;
+  return options;
+}
+
+void BM_StageSmoothing(benchmark::State& state) {
+  const CleanStroke clean = cleanStroke(chainStroke(1000));
+  const SmoothingOptions options = smoothingOptions(clean);
   for (auto _ : state) benchmark::DoNotOptimize(smoothWithBSpline(clean.points, false, options));
 }
 BENCHMARK(BM_StageSmoothing)->Unit(benchmark::kMicrosecond);
 
 void BM_StageSegmentation(benchmark::State& state) {
   const CleanStroke clean = cleanStroke(chainStroke(1000));
-  SmoothingOptions options;
-  options.tolerance = 0.005 * clean.diagonal;
-  options.noise_sigma = 0.001 * clean.diagonal;
-  const SmoothingResult smooth = smoothWithBSpline(clean.points, false, options);
+  const SmoothingResult smooth = smoothWithBSpline(clean.points, false, smoothingOptions(clean));
   for (auto _ : state) benchmark::DoNotOptimize(segmentSpline(smooth.spline));
 }
 BENCHMARK(BM_StageSegmentation)->Unit(benchmark::kMicrosecond);
