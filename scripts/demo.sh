@@ -8,7 +8,7 @@ bash scripts/setup.sh
 mkdir -p out
 ./build/app/lafit fit samples/question_mark.csv -o out/question_mark.json --svg out/question_mark.svg --comb \
   --csv out/question_mark.csv --dxf out/question_mark.dxf
-./build/app/lafit fit samples/clark-y.dat -o out/clark-y.json --svg out/clark-y.svg --comb
+./build/app/lafit fit samples/clark-y.dat -o out/clark-y.json --svg out/clark-y.svg --comb --y-up
 if [ -f ../shared/tools/lacheck.py ]; then
   /usr/bin/python3 ../shared/tools/lacheck.py out/question_mark.json samples/question_mark.csv
 fi

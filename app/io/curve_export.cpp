@@ -68,6 +68,9 @@ std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std:
       << num(box.lo.y() - margin) << ' ' << num(box.hi.x() - box.lo.x() + 2 * margin) << ' '
       << num(box.hi.y() - box.lo.y() + 2 * margin) << "\" width=\"800\" height=\""
       << num(800.0 * (box.hi.y() - box.lo.y() + 2 * margin) / (box.hi.x() - box.lo.x() + 2 * margin)) << "\">\n";
+  // y-up data: mirror about the box's middle line so it shows the right way up
+  svg << "<g" << (options.y_up ? " transform=\"matrix(1 0 0 -1 0 " + num(box.lo.y() + box.hi.y()) + ")\"" : std::string())
+      << ">\n";
   if (options.show_points) {
     svg << "<g id=\"input-points\" fill=\"#999\">\n";
     for (const auto& stroke : points)
@@ -110,7 +113,7 @@ std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std:
     if (c.closed) d << " Z";
     svg << "<path d=\"" << d.str() << "\"/>\n";
   }
-  svg << "</g>\n</svg>\n";
+  svg << "</g>\n</g>\n</svg>\n";
   return svg.str();
 }
 

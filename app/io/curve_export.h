@@ -24,6 +24,7 @@ struct SvgOptions {
   double comb_scale = 0.1;         // longest comb tooth, relative to the diagonal
   int comb_teeth_per_segment = 24;
   double stroke_width = 0.0;       // 0: 0.2% of the diagonal
+  bool y_up = false;               // the data's y axis points up (profiles, fonts): flip for SVG's y-down
 };
 
 /// Bounding-box diagonal of curves and points together (1 if empty or a single point).

@@ -20,7 +20,8 @@ an .svg (path, polyline and polygon elements).
 
 outputs:
   -o FILE.json    the curves (shared format) with quality figures and timings
-  --svg FILE.svg  input points and fitted curves (add --comb for the curvature comb)
+  --svg FILE.svg  input points and fitted curves (add --comb for the curvature comb,
+                  --y-up for data whose y axis points up: profiles, font outlines)
   --csv FILE.csv  samples x,y,s,theta,kappa (a blank line between curves)
   --dxf FILE.dxf  one SPLINE per curve
 

@@ -16,6 +16,7 @@ void writeOutputs(const Args& args, const nlohmann::json& document, const std::v
   if (auto path = args.get("--svg")) {
     SvgOptions svg;
     svg.show_comb = args.has("--comb");
+    svg.y_up = args.has("--y-up");
     writeFileAtomically(*path, curvesToSvg(curves, points, svg));
     std::cerr << "wrote " << *path << "\n";
   }

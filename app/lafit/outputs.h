@@ -13,7 +13,7 @@ namespace la::cli {
 
 /// Options every producing command accepts, for Args' `valued` set.
 inline const std::set<std::string> kOutputOptions = {"-o", "--svg", "--csv", "--dxf"};
-inline const std::set<std::string> kOutputFlags = {"--comb"};
+inline const std::set<std::string> kOutputFlags = {"--comb", "--y-up"};
 
 /// `document` is the JSON written with -o (the shared curve format plus whatever the
 /// command adds); `curves` and `points` feed the drawing formats.
