@@ -575,3 +575,50 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
 }
 
 }  // namespace la
+
+namespace la {
+
+std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
+                                          const FitOptions& options, std::string* why) {
+  auto fail = [&](const std::string& reason) -> std::optional<FitResult> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size()) return fail("no such segment");
+  if (fit.pieces[piece].kind != PieceKind::kThreePoint || std::isinf(fit.curve.pieces[piece].segment.alpha()))
+    return fail("this segment's alpha is fixed (an inflection end or a straight piece)");
+  // The corner-to-corner part holding the piece: a chain of its segments as they are.
+  const int part = fit.pieces[piece].part;
+  std::size_t first = piece, last = piece;
+  while (first > 0 && fit.pieces[first - 1].part == part) --first;
+  while (last + 1 < fit.pieces.size() && fit.pieces[last + 1].part == part) ++last;
+  Chain chain;
+  chain.closed = fit.curve.closed && first == 0 && last + 1 == fit.curve.pieces.size() &&
+                 !fit.curve.pieces.front().corner;
+  for (std::size_t i = first; i <= last; ++i) {
+    const LaSegment& seg = fit.curve.pieces[i].segment;
+    chain.joints.push_back(seg.start());
+    chain.angles.push_back(i == first ? seg.theta0() : chain.angles.back() + wrapAngle(seg.theta0() - chain.angles.back()));
+    chain.pieces.push_back({fit.pieces[i].kind, i == piece ? alpha : seg.alpha()});
+  }
+  const LaSegment& end = fit.curve.pieces[last].segment;
+  chain.joints.push_back(chain.closed ? chain.joints.front() : end.end());
+  const double end_angle = end.theta(end.length());
+  chain.angles.push_back(chain.angles.back() + wrapAngle(end_angle - chain.angles.back()));
+  G2Options g2;
+  g2.method = options.g2;
+  g2.threshold = options.g2_threshold;
+  g2.diagonal = fit.quality.diagonal;
+  const G2Result res = makeG2(chain, g2);
+  if (res.segments.empty()) return fail("no segment with alpha " + std::to_string(alpha) + " fits: " + res.report.message);
+  FitResult out = fit;
+  for (std::size_t i = first; i <= last; ++i) {
+    out.curve.pieces[i].segment = res.segments[i - first];
+    out.pieces[i].alpha = res.segments[i - first].alpha();
+  }
+  out.g2 = res.report;
+  out.quality = measureQuality(out.curve, out.cleaned.points);
+  return out;
+}
+
+}  // namespace la

@@ -79,4 +79,12 @@ struct FitResult {
 /// reported in the result and its warnings, with the curve as far as it got.
 FitResult fitStroke(const Stroke& stroke, const FitOptions& options = {});
 
+/// The user steering one segment: gives segment `piece` of a fitted curve the alpha
+/// `alpha` and solves G2 again over its corner-to-corner part (joint positions kept,
+/// joint tangents free; the other segments keep their alphas). Returns the updated
+/// result, or std::nullopt with `why` set if that piece is an inflection piece (its
+/// alpha is fixed by the inflection) or no G2 chain exists with that alpha.
+std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
+                                          const FitOptions& options, std::string* why = nullptr);
+
 }  // namespace la

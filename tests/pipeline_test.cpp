@@ -743,3 +743,45 @@ INSTANTIATE_TEST_SUITE_P(Chains, PipelineG2MethodTest,
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// The user's alpha for one segment (withSegmentAlpha): that segment takes it exactly,
+// the curve stays G2, and the joint positions do not move.
+TEST(SegmentAlpha, SteeredSegmentKeepsG2AndJoints) {
+  int checked = 0;
+  for (int index = 10; index < 20; ++index) {  // the 3- and 4-segment chains
+    const FitResult r = fit(truthCase(index).noisy);
+    for (std::size_t i = 0; i < r.pieces.size(); ++i) {
+      if (r.pieces[i].kind != PieceKind::kThreePoint) continue;
+      const double wanted = std::clamp(r.curve.pieces[i].segment.alpha() + 0.4, -3.0, 3.0);
+      std::string why;
+      const std::optional<FitResult> s = withSegmentAlpha(r, i, wanted, FitOptions{}, &why);
+      if (!s) continue;  // no G2 chain with that alpha: reported, not forced
+      ++checked;
+      EXPECT_DOUBLE_EQ(s->curve.pieces[i].segment.alpha(), wanted);
+      EXPECT_LT(s->quality.g2_gap, 1e-6) << "case " << index << " piece " << i;
+      EXPECT_LT(s->quality.g1_gap, 1e-9);
+      for (std::size_t k = 0; k < r.curve.pieces.size(); ++k)
+        EXPECT_LT((s->curve.pieces[k].segment.start() - r.curve.pieces[k].segment.start()).norm(), 1e-9 * r.quality.diagonal);
+      break;
+    }
+  }
+  EXPECT_GE(checked, 5) << "too few steerable segments were found";
+}
+
+TEST(SegmentAlpha, InflectionPieceAlphaIsFixed) {
+  const FitResult r = fit(truthCase(kRandomCases + 1).noisy);  // the clothoid through an inflection
+  for (std::size_t i = 0; i < r.pieces.size(); ++i) {
+    if (r.pieces[i].kind == PieceKind::kThreePoint) continue;
+    std::string why;
+    EXPECT_FALSE(withSegmentAlpha(r, i, -1.0, FitOptions{}, &why).has_value());
+    EXPECT_NE(why.find("fixed"), std::string::npos) << why;
+    return;
+  }
+  GTEST_SKIP() << "the fit has no inflection piece";
+}
+
+}  // namespace
+}  // namespace la

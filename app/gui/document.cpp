@@ -40,7 +40,29 @@ void Document::fit(DocumentStroke& s) const {
   } catch (const StrokeError& e) {  // a dot or a straight tap: kept, shown unfitted
     s.fit.reset();
     s.error = e.what();
+    return;
   }
+  for (const auto& [piece, alpha] : s.alpha_overrides) {
+    if (piece < 0 || piece >= static_cast<int>(s.fit->curve.pieces.size())) continue;  // segmentation changed
+    if (auto steered = withSegmentAlpha(*s.fit, static_cast<std::size_t>(piece), alpha, options_)) s.fit = std::move(steered);
+  }
+}
+
+std::string Document::steerSegment(std::size_t stroke, int piece, double alpha) {
+  if (stroke >= strokes_.size() || !strokes_[stroke].fit) return "no fitted stroke selected";
+  DocumentStroke& s = strokes_[stroke];
+  std::string why;
+  auto steered = withSegmentAlpha(*s.fit, static_cast<std::size_t>(piece), alpha, options_, &why);
+  if (!steered) return why;
+  s.fit = std::move(steered);
+  s.alpha_overrides[piece] = alpha;
+  return {};
+}
+
+void Document::setOverrides(std::size_t stroke, const std::map<int, double>& overrides) {
+  if (stroke >= strokes_.size()) return;
+  strokes_[stroke].alpha_overrides = overrides;
+  fit(strokes_[stroke]);
 }
 
 std::size_t Document::addStroke(const Stroke& raw) {
@@ -49,7 +71,7 @@ std::size_t Document::addStroke(const Stroke& raw) {
 }
 
 void Document::insertStroke(std::size_t index, const Stroke& raw) {
-  DocumentStroke s{raw, std::nullopt, {}};
+  DocumentStroke s{raw, std::nullopt, {}, {}};
   fit(s);
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
 }
@@ -74,7 +96,9 @@ void Document::save(const QString& path) const {
       t.push_back(std::isnan(p.t) ? nlohmann::json(nullptr) : nlohmann::json(p.t));
       pressure.push_back(std::isnan(p.pressure) ? nlohmann::json(nullptr) : nlohmann::json(p.pressure));
     }
-    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}});
+    nlohmann::json overrides = nlohmann::json::object();
+    for (const auto& [piece, alpha] : s.alpha_overrides) overrides[std::to_string(piece)] = alpha;
+    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"alpha_overrides", overrides}});
     curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
   const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", optionsToJson(options_)},
@@ -111,7 +135,10 @@ void Document::load(const QString& path) {
       if (k < pr.size() && pr[k].is_number()) s.pressure = pr[k].get<double>();
       raw.samples.push_back(s);
     }
-    loaded.push_back({raw, std::nullopt, {}});
+    std::map<int, double> overrides;
+    const nlohmann::json saved = strokes[i].value("alpha_overrides", nlohmann::json::object());
+    for (const auto& [key, value] : saved.items()) overrides[std::stoi(key)] = value.get<double>();
+    loaded.push_back({raw, std::nullopt, {}, overrides});
   }
   } catch (const nlohmann::json::exception& e) {  // missing key, wrong type
     throw std::runtime_error(name + ": " + e.what());

@@ -4,6 +4,7 @@
 // document file only needs strokes and options). No Qt widgets here.
 
 #include <QString>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@ struct DocumentStroke {
   Stroke raw;
   std::optional<FitResult> fit;  // empty if the stroke could not be fitted
   std::string error;             // why, then
+  std::map<int, double> alpha_overrides;  // the user's alpha per segment, reapplied after each fit
 };
 
 class Document {
@@ -28,6 +30,11 @@ class Document {
   void removeStroke(std::size_t index);
   void insertStroke(std::size_t index, const Stroke& raw);
   void setOptions(const FitOptions& options);  // refits every stroke
+  /// Gives a segment the user's alpha (kept across refits while the segmentation has
+  /// the same number of pieces). Returns "" or why it cannot.
+  std::string steerSegment(std::size_t stroke, int piece, double alpha);
+  /// Puts a stroke's overrides back as they were (for undo) and refits it.
+  void setOverrides(std::size_t stroke, const std::map<int, double>& overrides);
   void clear();
 
   /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},

@@ -77,6 +77,31 @@ class SetOptionsCommand : public QUndoCommand {
   FitOptions m_before, m_after;
 };
 
+class SteerSegmentCommand : public QUndoCommand {
+ public:
+  SteerSegmentCommand(MainWindow* w, std::size_t stroke, int piece, double alpha)
+      : QUndoCommand("steer segment alpha"), m_window(w), m_stroke(stroke), m_piece(piece), m_alpha(alpha),
+        m_before(w->document().strokes()[stroke].alpha_overrides) {}
+  void redo() override {
+    const std::string why = m_window->document().steerSegment(m_stroke, m_piece, m_alpha);
+    m_window->documentChanged();
+    m_window->selectSegment(static_cast<int>(m_stroke), m_piece);
+    if (!why.empty()) m_window->showMessage(QString::fromStdString(why));
+  }
+  void undo() override {
+    m_window->document().setOverrides(m_stroke, m_before);
+    m_window->documentChanged();
+    m_window->selectSegment(static_cast<int>(m_stroke), m_piece);
+  }
+
+ private:
+  MainWindow* m_window;
+  std::size_t m_stroke;
+  int m_piece;
+  double m_alpha;
+  std::map<int, double> m_before;
+};
+
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
@@ -112,6 +137,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
   connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
     m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
+  });
+  connect(m_parameters, &ParameterPanel::segmentAlphaChanged, this, [this](double a) {
+    if (m_selected_stroke >= 0 && m_selected_piece >= 0)
+      m_undo->push(new SteerSegmentCommand(this, static_cast<std::size_t>(m_selected_stroke), m_selected_piece, a));
   });
   m_autosave = new QTimer(this);
   connect(m_autosave, &QTimer::timeout, this, &MainWindow::autosave);
@@ -162,6 +191,11 @@ void MainWindow::selectSegment(int stroke, int piece) {
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
   if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
+  const bool steerable = fit && piece >= 0 && fit->pieces[piece].kind == PieceKind::kThreePoint &&
+                         std::isfinite(fit->curve.pieces[piece].segment.alpha());
+  m_parameters->setSegmentAlpha(steerable, steerable ? fit->curve.pieces[piece].segment.alpha() : 0.0,
+                                fit && piece >= 0 ? "this segment's alpha is fixed (inflection end or straight)"
+                                                  : "right-click a segment first");
   if (fit && piece >= 0) {
     const LaSegment& seg = fit->curve.pieces[piece].segment;
     m_status->setText(QString("segment %1 of stroke %2: alpha %3, length %4, curvature %5 → %6, %7")
@@ -229,6 +263,8 @@ void MainWindow::documentChanged() {
                         .arg(q.extrema)
                         .arg(last->timings.total_ms, 0, 'f', 2));
 }
+
+void MainWindow::showMessage(const QString& what) { m_status->setText(what); }
 
 void MainWindow::showError(const QString& what) {
   m_status->setText(what);

@@ -45,13 +45,14 @@ class MainWindow : public QMainWindow {
   void addStroke(const Stroke& stroke);
   /// Called after any change of the document: repaint, plot, status.
   void documentChanged();
+  void selectSegment(int stroke, int piece);  // -1, -1: none
+  void showMessage(const QString& what);      // in the status bar
 
  private:
   void buildMenus();
   void showError(const QString& what);
   void autosave();
   void updatePreview();  // live fit of the stroke being drawn, as often as time allows
-  void selectSegment(int stroke, int piece);
   void rememberRecent(const QString& path);
   void refreshRecentMenu();
 

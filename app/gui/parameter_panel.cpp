@@ -36,6 +36,17 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   form->addRow("G2 threshold", m_threshold);
   m_corners = new QCheckBox("keep sharp corners");
   form->addRow("", m_corners);
+  m_alpha = new QDoubleSpinBox;
+  m_alpha->setRange(-3.0, 3.0);
+  m_alpha->setSingleStep(0.1);
+  m_alpha->setDecimals(2);
+  m_alpha->setKeyboardTracking(false);
+  m_alpha->setToolTip("Right-click a segment to steer its LCG slope alpha; the curve stays G2");
+  form->addRow("Segment alpha", m_alpha);
+  setSegmentAlpha(false, 0.0, "right-click a segment first");
+  connect(m_alpha, &QDoubleSpinBox::valueChanged, this, [this](double a) {
+    if (!m_updating) emit segmentAlphaChanged(a);
+  });
   setOptions(FitOptions{});
   auto changed = [this] {
     if (!m_updating) emit optionsChanged(options());
@@ -55,6 +66,14 @@ void ParameterPanel::setOptions(const FitOptions& o) {
   m_g2->setCurrentIndex(m_g2->findData(static_cast<int>(o.g2)));
   m_threshold->setValue(std::log10(o.g2_threshold));
   m_corners->setChecked(o.cleanup.detect_corners);
+  m_updating = false;
+}
+
+void ParameterPanel::setSegmentAlpha(bool enabled, double alpha, const QString& reason) {
+  m_updating = true;
+  m_alpha->setEnabled(enabled);
+  if (enabled) m_alpha->setValue(alpha);
+  m_alpha->setToolTip(enabled ? "the selected segment's LCG slope; the curve stays G2" : reason);
   m_updating = false;
 }
 

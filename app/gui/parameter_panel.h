@@ -19,9 +19,12 @@ class ParameterPanel : public QWidget {
   explicit ParameterPanel(QWidget* parent = nullptr);
   void setOptions(const FitOptions& options);  // without emitting
   FitOptions options() const;
+  /// The selected segment's alpha; disabled (with the reason as tool tip) if none can be steered.
+  void setSegmentAlpha(bool enabled, double alpha, const QString& reason = {});
 
  signals:
   void optionsChanged(const la::FitOptions& options);
+  void segmentAlphaChanged(double alpha);
 
  private:
   QDoubleSpinBox* m_tolerance = nullptr;  // percent of the stroke's diagonal
@@ -29,6 +32,7 @@ class ParameterPanel : public QWidget {
   QComboBox* m_g2 = nullptr;
   QDoubleSpinBox* m_threshold = nullptr;  // log10 of the relative G2 gap
   QCheckBox* m_corners = nullptr;
+  QDoubleSpinBox* m_alpha = nullptr;      // the selected segment's alpha
   FitOptions m_base;                      // the options not on the panel
   bool m_updating = false;
 };

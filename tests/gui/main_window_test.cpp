@@ -179,6 +179,32 @@ TEST_F(MainWindowTest, RightClickSelectsASegmentAndPngExport) {
   EXPECT_FALSE(QImage(png).isNull());
 }
 
+TEST_F(MainWindowTest, SteeringASegmentAlphaKeepsG2AndUndoes) {
+  drawWithMouse(window->canvas(), wave());
+  const FitResult before = lastFit();
+  for (std::size_t i = 0; i < before.pieces.size(); ++i) {
+    if (before.pieces[i].kind != PieceKind::kThreePoint) continue;
+    window->selectSegment(0, static_cast<int>(i));
+    const double wanted = std::clamp(before.curve.pieces[i].segment.alpha() + 0.3, -3.0, 3.0);
+    emit window->parameters()->segmentAlphaChanged(wanted);
+    const FitResult& after = lastFit();
+    if (after.curve.pieces[i].segment.alpha() != wanted) continue;  // infeasible: reported in the status bar
+    EXPECT_LT(after.quality.g2_gap, 1e-6);
+    EXPECT_EQ(window->document().strokes()[0].alpha_overrides.count(static_cast<int>(i)), 1u);
+    window->undoStack()->undo();
+    EXPECT_DOUBLE_EQ(lastFit().curve.pieces[i].segment.alpha(), before.curve.pieces[i].segment.alpha());
+    // kept in the saved sketch
+    window->undoStack()->redo();
+    const QString path = dir.filePath("steered.lafair.json");
+    ASSERT_TRUE(window->saveFile(path));
+    MainWindow other;
+    ASSERT_TRUE(other.openFile(path));
+    EXPECT_DOUBLE_EQ(other.document().strokes()[0].fit->curve.pieces[i].segment.alpha(), wanted);
+    return;
+  }
+  GTEST_SKIP() << "no steerable segment in this stroke";
+}
+
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
   QApplication::processEvents();
