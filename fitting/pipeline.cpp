@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <cmath>
 #include <string>
@@ -578,16 +579,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
 
 namespace la {
 
-std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
-                                          const FitOptions& options, std::string* why) {
-  auto fail = [&](const std::string& reason) -> std::optional<FitResult> {
-    if (why) *why = reason;
-    return std::nullopt;
-  };
-  if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size()) return fail("no such segment");
-  if (fit.pieces[piece].kind != PieceKind::kThreePoint || std::isinf(fit.curve.pieces[piece].segment.alpha()))
-    return fail("this segment's alpha is fixed (an inflection end or a straight piece)");
-  // The corner-to-corner part holding the piece: a chain of its segments as they are.
+namespace {
+
+// Re-solves G2 over the corner-to-corner part holding `piece`, its chain taken from
+// the fitted segments, after `edit` changed the chain (index of the piece in the chain).
+std::optional<FitResult> resolvePart(const FitResult& fit, std::size_t piece, const FitOptions& options,
+                                     const std::function<void(Chain&, std::size_t)>& edit, std::string* why) {
   const int part = fit.pieces[piece].part;
   std::size_t first = piece, last = piece;
   while (first > 0 && fit.pieces[first - 1].part == part) --first;
@@ -599,18 +596,21 @@ std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piec
     const LaSegment& seg = fit.curve.pieces[i].segment;
     chain.joints.push_back(seg.start());
     chain.angles.push_back(i == first ? seg.theta0() : chain.angles.back() + wrapAngle(seg.theta0() - chain.angles.back()));
-    chain.pieces.push_back({fit.pieces[i].kind, i == piece ? alpha : seg.alpha()});
+    chain.pieces.push_back({fit.pieces[i].kind, seg.alpha()});
   }
   const LaSegment& end = fit.curve.pieces[last].segment;
   chain.joints.push_back(chain.closed ? chain.joints.front() : end.end());
-  const double end_angle = end.theta(end.length());
-  chain.angles.push_back(chain.angles.back() + wrapAngle(end_angle - chain.angles.back()));
+  chain.angles.push_back(chain.angles.back() + wrapAngle(end.theta(end.length()) - chain.angles.back()));
+  edit(chain, piece - first);
   G2Options g2;
   g2.method = options.g2;
   g2.threshold = options.g2_threshold;
   g2.diagonal = fit.quality.diagonal;
   const G2Result res = makeG2(chain, g2);
-  if (res.segments.empty()) return fail("no segment with alpha " + std::to_string(alpha) + " fits: " + res.report.message);
+  if (res.segments.empty() || !res.report.usable()) {
+    if (why) *why = "no G2 curve through that change: " + res.report.message;
+    return std::nullopt;
+  }
   FitResult out = fit;
   for (std::size_t i = first; i <= last; ++i) {
     out.curve.pieces[i].segment = res.segments[i - first];
@@ -619,6 +619,37 @@ std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piec
   out.g2 = res.report;
   out.quality = measureQuality(out.curve, out.cleaned.points);
   return out;
+}
+
+}  // namespace
+
+std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
+                                          const FitOptions& options, std::string* why) {
+  if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size()) {
+    if (why) *why = "no such segment";
+    return std::nullopt;
+  }
+  if (fit.pieces[piece].kind != PieceKind::kThreePoint || std::isinf(fit.curve.pieces[piece].segment.alpha())) {
+    if (why) *why = "this segment's alpha is fixed (an inflection end or a straight piece)";
+    return std::nullopt;
+  }
+  return resolvePart(fit, piece, options, [&](Chain& c, std::size_t i) { c.pieces[i].alpha = alpha; }, why);
+}
+
+std::optional<FitResult> withJointMoved(const FitResult& fit, std::size_t piece, const Vec2& position,
+                                        const FitOptions& options, std::string* why) {
+  if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size() || !allFinite(position)) {
+    if (why) *why = "no such joint";
+    return std::nullopt;
+  }
+  if (fit.curve.pieces[piece].corner) {  // two parts meet there; moving one would open the corner
+    if (why) *why = "a corner joins two parts: it stays where it is";
+    return std::nullopt;
+  }
+  return resolvePart(fit, piece, options, [&](Chain& c, std::size_t i) {
+    c.joints[i] = position;
+    if (c.closed && i == 0) c.joints.back() = position;
+  }, why);
 }
 
 }  // namespace la

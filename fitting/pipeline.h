@@ -87,4 +87,11 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options = {});
 std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
                                           const FitOptions& options, std::string* why = nullptr);
 
+/// The user dragging a joint: moves the start point of segment `piece` (the joint
+/// between it and the one before; piece 0 moves the curve's start) to `position` and
+/// solves G2 again over its corner-to-corner part (alphas kept, tangents free).
+/// std::nullopt with `why` if no G2 chain exists there.
+std::optional<FitResult> withJointMoved(const FitResult& fit, std::size_t piece, const Vec2& position,
+                                        const FitOptions& options, std::string* why = nullptr);
+
 }  // namespace la

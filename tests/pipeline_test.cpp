@@ -771,6 +771,27 @@ TEST(SegmentAlpha, SteeredSegmentKeepsG2AndJoints) {
   EXPECT_GE(checked, 5) << "too few steerable segments were found";
 }
 
+// Dragging a joint (withJointMoved): the joint lands where it was put, the curve stays
+// G2 and the other joints stay.
+TEST(SegmentAlpha, MovedJointKeepsG2) {
+  int checked = 0;
+  for (int index = 10; index < 20; ++index) {
+    const FitResult r = fit(truthCase(index).noisy);
+    if (r.curve.pieces.size() < 3) continue;
+    const std::size_t joint = 1;
+    const Vec2 target = r.curve.pieces[joint].segment.start() + Vec2(0.01, -0.005) * r.quality.diagonal;
+    std::string why;
+    const std::optional<FitResult> s = withJointMoved(r, joint, target, FitOptions{}, &why);
+    if (!s) continue;
+    ++checked;
+    EXPECT_LT((s->curve.pieces[joint].segment.start() - target).norm(), 1e-12 * r.quality.diagonal);
+    EXPECT_LT((s->curve.pieces[joint - 1].segment.end() - target).norm(), 1e-9 * r.quality.diagonal);
+    EXPECT_LT(s->quality.g2_gap, 1e-6) << "case " << index;
+    EXPECT_LT((s->curve.pieces[2].segment.start() - r.curve.pieces[2].segment.start()).norm(), 1e-9 * r.quality.diagonal);
+  }
+  EXPECT_GE(checked, 5);
+}
+
 TEST(SegmentAlpha, InflectionPieceAlphaIsFixed) {
   const FitResult r = fit(truthCase(kRandomCases + 1).noisy);  // the clothoid through an inflection
   for (std::size_t i = 0; i < r.pieces.size(); ++i) {

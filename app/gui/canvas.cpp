@@ -118,6 +118,18 @@ void Canvas::mousePressEvent(QMouseEvent* e) {
   if (e->button() == Qt::MiddleButton || (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ShiftModifier))) {
     m_panning = true;
     m_pan_anchor = e->position();
+  } else if (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ControlModifier) && m_document) {
+    // ctrl+drag moves the joint under the cursor (within 8 pixels)
+    double best = 8.0;
+    for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
+      const auto& fit = m_document->strokes()[k].fit;
+      if (!fit) continue;
+      for (std::size_t i = 0; i < fit->curve.pieces.size(); ++i) {
+        const QPointF q = toWidget(fit->curve.pieces[i].segment.start());
+        const double d = std::hypot(q.x() - e->position().x(), q.y() - e->position().y());
+        if (d < best) best = d, m_drag_stroke = static_cast<int>(k), m_drag_piece = static_cast<int>(i);
+      }
+    }
   } else if (e->button() == Qt::LeftButton) {
     beginStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
   } else if (e->button() == Qt::RightButton && m_document) {
@@ -148,13 +160,22 @@ void Canvas::mouseMoveEvent(QMouseEvent* e) {
     shift.translate(d.x(), d.y());
     m_view = m_view * shift;
     update();
+  } else if (m_drag_piece >= 0) {
+    emit jointDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
   } else if (m_drawing) {
     extendStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
   }
   emit cursorMoved(toWorld(e->position()));
 }
 
-void Canvas::mouseReleaseEvent(QMouseEvent*) {
+void Canvas::mouseReleaseEvent(QMouseEvent* e) {
+  if (m_drag_piece >= 0) {
+    const int stroke = m_drag_stroke, piece = m_drag_piece;
+    m_drag_stroke = m_drag_piece = -1;
+    m_preview.reset();
+    emit jointDropped(stroke, piece, toWorld(e->position()));
+    return;
+  }
   if (m_panning) m_panning = false;
   else if (m_drawing) endStroke();
 }

@@ -45,6 +45,8 @@ class Canvas : public QWidget {
   void strokeProgress();
   void cursorMoved(const QPointF& world);
   void segmentClicked(int stroke, int piece);  // right click near a segment
+  void jointDragged(int stroke, int piece, const QPointF& world);  // ctrl+drag of a joint, live
+  void jointDropped(int stroke, int piece, const QPointF& world);
 
  protected:
   void paintEvent(QPaintEvent*) override;
@@ -69,6 +71,7 @@ class Canvas : public QWidget {
   Stroke m_current;           // the stroke being drawn, in world coordinates
   qint64 m_stroke_start_ms = 0;
   std::optional<FitResult> m_preview;
+  int m_drag_stroke = -1, m_drag_piece = -1;  // the joint being dragged
   int m_selected_stroke = -1, m_selected_piece = -1;
 };
 

@@ -42,10 +42,26 @@ void Document::fit(DocumentStroke& s) const {
     s.error = e.what();
     return;
   }
+  const int pieces = static_cast<int>(s.fit->curve.pieces.size());
   for (const auto& [piece, alpha] : s.alpha_overrides) {
-    if (piece < 0 || piece >= static_cast<int>(s.fit->curve.pieces.size())) continue;  // segmentation changed
+    if (piece < 0 || piece >= pieces) continue;  // the segmentation changed under it
     if (auto steered = withSegmentAlpha(*s.fit, static_cast<std::size_t>(piece), alpha, options_)) s.fit = std::move(steered);
   }
+  for (const auto& [piece, position] : s.joint_overrides) {
+    if (piece < 0 || piece >= pieces) continue;
+    if (auto moved = withJointMoved(*s.fit, static_cast<std::size_t>(piece), position, options_)) s.fit = std::move(moved);
+  }
+}
+
+std::string Document::moveJoint(std::size_t stroke, int piece, const Vec2& position) {
+  if (stroke >= strokes_.size() || !strokes_[stroke].fit) return "no fitted stroke there";
+  DocumentStroke& s = strokes_[stroke];
+  std::string why;
+  auto moved = withJointMoved(*s.fit, static_cast<std::size_t>(piece), position, options_, &why);
+  if (!moved) return why;
+  s.fit = std::move(moved);
+  s.joint_overrides[piece] = position;
+  return {};
 }
 
 std::string Document::steerSegment(std::size_t stroke, int piece, double alpha) {
@@ -59,9 +75,10 @@ std::string Document::steerSegment(std::size_t stroke, int piece, double alpha) 
   return {};
 }
 
-void Document::setOverrides(std::size_t stroke, const std::map<int, double>& overrides) {
+void Document::setOverrides(std::size_t stroke, const std::map<int, double>& alphas, const std::map<int, Vec2>& joints) {
   if (stroke >= strokes_.size()) return;
-  strokes_[stroke].alpha_overrides = overrides;
+  strokes_[stroke].alpha_overrides = alphas;
+  strokes_[stroke].joint_overrides = joints;
   fit(strokes_[stroke]);
 }
 
@@ -71,7 +88,7 @@ std::size_t Document::addStroke(const Stroke& raw) {
 }
 
 void Document::insertStroke(std::size_t index, const Stroke& raw) {
-  DocumentStroke s{raw, std::nullopt, {}, {}};
+  DocumentStroke s{raw, std::nullopt, {}, {}, {}};
   fit(s);
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
 }
@@ -98,7 +115,10 @@ void Document::save(const QString& path) const {
     }
     nlohmann::json overrides = nlohmann::json::object();
     for (const auto& [piece, alpha] : s.alpha_overrides) overrides[std::to_string(piece)] = alpha;
-    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"alpha_overrides", overrides}});
+    nlohmann::json joints = nlohmann::json::object();
+    for (const auto& [piece, q] : s.joint_overrides) joints[std::to_string(piece)] = {q.x(), q.y()};
+    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"alpha_overrides", overrides},
+                       {"joint_overrides", joints}});
     curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
   const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", optionsToJson(options_)},
@@ -138,7 +158,10 @@ void Document::load(const QString& path) {
     std::map<int, double> overrides;
     const nlohmann::json saved = strokes[i].value("alpha_overrides", nlohmann::json::object());
     for (const auto& [key, value] : saved.items()) overrides[std::stoi(key)] = value.get<double>();
-    loaded.push_back({raw, std::nullopt, {}, overrides});
+    std::map<int, Vec2> joints;
+    const nlohmann::json saved_joints = strokes[i].value("joint_overrides", nlohmann::json::object());
+    for (const auto& [key, value] : saved_joints.items()) joints[std::stoi(key)] = Vec2(value.at(0).get<double>(), value.at(1).get<double>());
+    loaded.push_back({raw, std::nullopt, {}, overrides, joints});
   }
   } catch (const nlohmann::json::exception& e) {  // missing key, wrong type
     throw std::runtime_error(name + ": " + e.what());

@@ -18,6 +18,7 @@ struct DocumentStroke {
   std::optional<FitResult> fit;  // empty if the stroke could not be fitted
   std::string error;             // why, then
   std::map<int, double> alpha_overrides;  // the user's alpha per segment, reapplied after each fit
+  std::map<int, Vec2> joint_overrides;    // the user's position of a segment's start joint, likewise
 };
 
 class Document {
@@ -33,8 +34,10 @@ class Document {
   /// Gives a segment the user's alpha (kept across refits while the segmentation has
   /// the same number of pieces). Returns "" or why it cannot.
   std::string steerSegment(std::size_t stroke, int piece, double alpha);
+  /// Moves the start joint of a segment (kept across refits like the alphas).
+  std::string moveJoint(std::size_t stroke, int piece, const Vec2& position);
   /// Puts a stroke's overrides back as they were (for undo) and refits it.
-  void setOverrides(std::size_t stroke, const std::map<int, double>& overrides);
+  void setOverrides(std::size_t stroke, const std::map<int, double>& alphas, const std::map<int, Vec2>& joints);
   void clear();
 
   /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},

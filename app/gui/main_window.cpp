@@ -81,7 +81,8 @@ class SteerSegmentCommand : public QUndoCommand {
  public:
   SteerSegmentCommand(MainWindow* w, std::size_t stroke, int piece, double alpha)
       : QUndoCommand("steer segment alpha"), m_window(w), m_stroke(stroke), m_piece(piece), m_alpha(alpha),
-        m_before(w->document().strokes()[stroke].alpha_overrides) {}
+        m_alphas(w->document().strokes()[stroke].alpha_overrides),
+        m_joints(w->document().strokes()[stroke].joint_overrides) {}
   void redo() override {
     const std::string why = m_window->document().steerSegment(m_stroke, m_piece, m_alpha);
     m_window->documentChanged();
@@ -89,7 +90,7 @@ class SteerSegmentCommand : public QUndoCommand {
     if (!why.empty()) m_window->showMessage(QString::fromStdString(why));
   }
   void undo() override {
-    m_window->document().setOverrides(m_stroke, m_before);
+    m_window->document().setOverrides(m_stroke, m_alphas, m_joints);
     m_window->documentChanged();
     m_window->selectSegment(static_cast<int>(m_stroke), m_piece);
   }
@@ -99,7 +100,33 @@ class SteerSegmentCommand : public QUndoCommand {
   std::size_t m_stroke;
   int m_piece;
   double m_alpha;
-  std::map<int, double> m_before;
+  std::map<int, double> m_alphas;
+  std::map<int, Vec2> m_joints;
+};
+
+class MoveJointCommand : public QUndoCommand {
+ public:
+  MoveJointCommand(MainWindow* w, std::size_t stroke, int piece, Vec2 position)
+      : QUndoCommand("move joint"), m_window(w), m_stroke(stroke), m_piece(piece), m_position(position),
+        m_alphas(w->document().strokes()[stroke].alpha_overrides),
+        m_joints(w->document().strokes()[stroke].joint_overrides) {}
+  void redo() override {
+    const std::string why = m_window->document().moveJoint(m_stroke, m_piece, m_position);
+    m_window->documentChanged();
+    if (!why.empty()) m_window->showMessage(QString::fromStdString(why));
+  }
+  void undo() override {
+    m_window->document().setOverrides(m_stroke, m_alphas, m_joints);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  std::size_t m_stroke;
+  int m_piece;
+  Vec2 m_position;
+  std::map<int, double> m_alphas;
+  std::map<int, Vec2> m_joints;
 };
 
 }  // namespace
@@ -137,6 +164,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
   connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
     m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
+  });
+  connect(m_canvas, &Canvas::jointDragged, this, [this](int stroke, int piece, const QPointF& w) {
+    const auto& s = m_document.strokes()[static_cast<std::size_t>(stroke)];
+    if (!s.fit) return;
+    m_canvas->setPreview(withJointMoved(*s.fit, static_cast<std::size_t>(piece), Vec2(w.x(), w.y()), m_document.options()));
+  });
+  connect(m_canvas, &Canvas::jointDropped, this, [this](int stroke, int piece, const QPointF& w) {
+    m_undo->push(new MoveJointCommand(this, static_cast<std::size_t>(stroke), piece, Vec2(w.x(), w.y())));
   });
   connect(m_parameters, &ParameterPanel::segmentAlphaChanged, this, [this](double a) {
     if (m_selected_stroke >= 0 && m_selected_piece >= 0)

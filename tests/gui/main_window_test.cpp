@@ -205,6 +205,33 @@ TEST_F(MainWindowTest, SteeringASegmentAlphaKeepsG2AndUndoes) {
   GTEST_SKIP() << "no steerable segment in this stroke";
 }
 
+TEST_F(MainWindowTest, CtrlDragAJointKeepsG2AndUndoes) {
+  drawWithMouse(window->canvas(), wave());
+  const FitResult before = lastFit();
+  ASSERT_GE(before.curve.pieces.size(), 2u);
+  Canvas* canvas = window->canvas();
+  for (std::size_t i = 1; i < before.curve.pieces.size(); ++i) {
+    if (before.curve.pieces[i].corner) continue;
+    const QPoint from = canvas->toWidget(before.curve.pieces[i].segment.start()).toPoint();
+    const QPoint to = from + QPoint(6, -8);
+    QTest::mousePress(canvas, Qt::LeftButton, Qt::ControlModifier, from);
+    QMouseEvent move(QEvent::MouseMove, to, canvas->mapToGlobal(to), Qt::NoButton, Qt::LeftButton, Qt::ControlModifier);
+    QApplication::sendEvent(canvas, &move);
+    QTest::mouseRelease(canvas, Qt::LeftButton, Qt::ControlModifier, to);
+    EXPECT_EQ(window->document().strokes().size(), 1u) << "a joint drag draws no stroke";
+    const FitResult& after = lastFit();
+    const QPointF world = canvas->toWorld(to);
+    if ((after.curve.pieces[i].segment.start() - Vec2(world.x(), world.y())).norm() > 1e-6 * after.quality.diagonal)
+      continue;  // no G2 curve through that point: refused and reported
+    EXPECT_LT(after.quality.g2_gap, 1e-6);
+    window->undoStack()->undo();
+    EXPECT_LT((lastFit().curve.pieces[i].segment.start() - before.curve.pieces[i].segment.start()).norm(),
+              1e-9 * before.quality.diagonal);
+    return;
+  }
+  GTEST_SKIP() << "no joint could be moved";
+}
+
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
   QApplication::processEvents();
