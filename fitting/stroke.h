@@ -48,6 +48,8 @@ struct StrokeSample {
   Vec2 p = Vec2::Zero();
   double t = std::numeric_limits<double>::quiet_NaN();         // time stamp (ms), NaN if unknown
   double pressure = std::numeric_limits<double>::quiet_NaN();  // 0..1 or device units, NaN if unknown
+  double tilt_x = std::numeric_limits<double>::quiet_NaN();    // pen tilt in degrees (tablets), NaN if unknown
+  double tilt_y = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct Stroke {

@@ -1,6 +1,7 @@
 #include "app/gui/canvas.h"
 
 #include <QDateTime>
+#include <QGestureEvent>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPainterPath>
@@ -23,6 +24,7 @@ const QColor kStrokeInkColor(60, 60, 60);
 Canvas::Canvas(QWidget* parent) : QWidget(parent) {
   setAttribute(Qt::WA_TabletTracking);
   setAttribute(Qt::WA_AcceptTouchEvents);
+  grabGesture(Qt::PinchGesture);
   setMouseTracking(true);
   setMinimumSize(400, 300);
   setAutoFillBackground(true);
@@ -65,6 +67,33 @@ void Canvas::setPreview(std::optional<FitResult> preview) {
   update();
 }
 
+void Canvas::setBackground(const QImage& image, double opacity) {
+  m_background = image;
+  m_background_opacity = opacity;
+  update();
+}
+
+bool Canvas::event(QEvent* e) {
+  if (e->type() == QEvent::Gesture) {
+    auto* g = static_cast<QGestureEvent*>(e);
+    if (auto* pinch = static_cast<QPinchGesture*>(g->gesture(Qt::PinchGesture))) {
+      zoomAbout(mapFromGlobal(pinch->centerPoint().toPoint()), pinch->scaleFactor());
+      g->accept(pinch);
+      return true;
+    }
+  }
+  return QWidget::event(e);
+}
+
+void Canvas::zoomAbout(const QPointF& c, double factor) {
+  QTransform zoom;
+  zoom.translate(c.x(), c.y());
+  zoom.scale(factor, factor);
+  zoom.translate(-c.x(), -c.y());
+  m_view = m_view * zoom;
+  update();
+}
+
 void Canvas::setSelection(int stroke, int piece) {
   m_selected_stroke = stroke;
   m_selected_piece = piece;
@@ -78,12 +107,14 @@ void Canvas::beginStroke(const QPointF& pos, double pressure, double time_ms) {
   extendStroke(pos, pressure, time_ms);
 }
 
-void Canvas::extendStroke(const QPointF& pos, double pressure, double time_ms) {
+void Canvas::extendStroke(const QPointF& pos, double pressure, double time_ms, double tilt_x, double tilt_y) {
   const QPointF w = toWorld(pos);
   StrokeSample s;
   s.p = Vec2(w.x(), w.y());
   s.t = time_ms - static_cast<double>(m_stroke_start_ms);
   s.pressure = pressure;
+  s.tilt_x = tilt_x;
+  s.tilt_y = tilt_y;
   m_current.samples.push_back(s);
   update();  // painting happens in paintEvent, never here
   emit strokeProgress();
@@ -103,7 +134,7 @@ void Canvas::tabletEvent(QTabletEvent* e) {
   switch (e->type()) {
     case QEvent::TabletPress: beginStroke(e->position(), e->pressure(), now); break;
     case QEvent::TabletMove:
-      if (m_drawing) extendStroke(e->position(), e->pressure(), now);
+      if (m_drawing) extendStroke(e->position(), e->pressure(), now, e->xTilt(), e->yTilt());
       emit cursorMoved(toWorld(e->position()));
       break;
     case QEvent::TabletRelease:
@@ -180,16 +211,7 @@ void Canvas::mouseReleaseEvent(QMouseEvent* e) {
   else if (m_drawing) endStroke();
 }
 
-void Canvas::wheelEvent(QWheelEvent* e) {
-  const double factor = std::pow(kZoomStep, e->angleDelta().y() / 120.0);
-  const QPointF c = e->position();
-  QTransform zoom;
-  zoom.translate(c.x(), c.y());
-  zoom.scale(factor, factor);
-  zoom.translate(-c.x(), -c.y());
-  m_view = m_view * zoom;
-  update();
-}
+void Canvas::wheelEvent(QWheelEvent* e) { zoomAbout(e->position(), std::pow(kZoomStep, e->angleDelta().y() / 120.0)); }
 
 void Canvas::paintCurve(QPainter& p, const FitResult& fit, int selected_piece) const {
   const Curve& curve = fit.curve;
@@ -261,6 +283,13 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit, int selected_piece) c
 void Canvas::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
+  if (!m_background.isNull()) {
+    p.save();
+    p.setTransform(m_view);
+    p.setOpacity(m_background_opacity);
+    p.drawImage(QPointF(0, 0), m_background);
+    p.restore();
+  }
   if (m_document) {
     for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
       const DocumentStroke& s = m_document->strokes()[k];

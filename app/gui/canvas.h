@@ -5,9 +5,11 @@
 // (squares), joints. Wheel zooms about the cursor, the middle button (or space+drag)
 // pans. The widget records and paints; fitting is the document's job.
 
+#include <QImage>
 #include <QPointF>
 #include <QTransform>
 #include <QWidget>
+#include <cmath>
 #include <optional>
 
 #include "app/gui/document.h"
@@ -39,6 +41,14 @@ class Canvas : public QWidget {
   bool hasPreview() const { return m_preview.has_value(); }
   const Stroke& currentStroke() const { return m_current; }
   void setSelection(int stroke, int piece);
+  /// A raster image under the drawing, to trace over; world units are its pixels.
+  void setBackground(const QImage& image, double opacity);
+  double backgroundOpacity() const { return m_background_opacity; }
+  void setBackgroundOpacity(double opacity) {
+    m_background_opacity = opacity;
+    update();
+  }
+  bool hasBackground() const { return !m_background.isNull(); }
 
  signals:
   void strokeFinished(const la::Stroke& stroke);
@@ -57,8 +67,10 @@ class Canvas : public QWidget {
   void wheelEvent(QWheelEvent* event) override;
 
  private:
+  bool event(QEvent* event) override;  // pinch gestures
   void beginStroke(const QPointF& pos, double pressure, double time_ms);
-  void extendStroke(const QPointF& pos, double pressure, double time_ms);
+  void extendStroke(const QPointF& pos, double pressure, double time_ms, double tilt_x = NAN, double tilt_y = NAN);
+  void zoomAbout(const QPointF& center, double factor);
   void endStroke();
   void paintCurve(QPainter& p, const FitResult& fit, int selected_piece) const;
 
@@ -72,6 +84,8 @@ class Canvas : public QWidget {
   qint64 m_stroke_start_ms = 0;
   std::optional<FitResult> m_preview;
   int m_drag_stroke = -1, m_drag_piece = -1;  // the joint being dragged
+  QImage m_background;
+  double m_background_opacity = 0.5;
   int m_selected_stroke = -1, m_selected_piece = -1;
 };
 

@@ -107,17 +107,20 @@ void Document::clear() { strokes_.clear(); }
 void Document::save(const QString& path) const {
   nlohmann::json strokes = nlohmann::json::array(), curves = nlohmann::json::array();
   for (const DocumentStroke& s : strokes_) {
-    nlohmann::json pts = nlohmann::json::array(), t = nlohmann::json::array(), pressure = nlohmann::json::array();
+    nlohmann::json pts = nlohmann::json::array(), t = nlohmann::json::array(), pressure = nlohmann::json::array(),
+                   tilt = nlohmann::json::array();
+    auto value = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
     for (const StrokeSample& p : s.raw.samples) {
       pts.push_back({p.p.x(), p.p.y()});
-      t.push_back(std::isnan(p.t) ? nlohmann::json(nullptr) : nlohmann::json(p.t));
-      pressure.push_back(std::isnan(p.pressure) ? nlohmann::json(nullptr) : nlohmann::json(p.pressure));
+      t.push_back(value(p.t));
+      pressure.push_back(value(p.pressure));
+      tilt.push_back({value(p.tilt_x), value(p.tilt_y)});
     }
     nlohmann::json overrides = nlohmann::json::object();
     for (const auto& [piece, alpha] : s.alpha_overrides) overrides[std::to_string(piece)] = alpha;
     nlohmann::json joints = nlohmann::json::object();
     for (const auto& [piece, q] : s.joint_overrides) joints[std::to_string(piece)] = {q.x(), q.y()};
-    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"alpha_overrides", overrides},
+    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"tilt", tilt}, {"alpha_overrides", overrides},
                        {"joint_overrides", joints}});
     curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
@@ -146,6 +149,7 @@ void Document::load(const QString& path) {
     const auto& pts = strokes[i].at("points");
     const auto t = strokes[i].value("t", nlohmann::json::array());
     const auto pr = strokes[i].value("pressure", nlohmann::json::array());
+    const auto tilt = strokes[i].value("tilt", nlohmann::json::array());
     for (std::size_t k = 0; k < pts.size(); ++k) {
       if (!pts[k].is_array() || pts[k].size() != 2)
         throw std::runtime_error(name + ": strokes[" + std::to_string(i) + "].points[" + std::to_string(k) + "]: expected [x, y]");
@@ -153,6 +157,10 @@ void Document::load(const QString& path) {
       s.p = Vec2(pts[k][0].get<double>(), pts[k][1].get<double>());
       if (k < t.size() && t[k].is_number()) s.t = t[k].get<double>();
       if (k < pr.size() && pr[k].is_number()) s.pressure = pr[k].get<double>();
+      if (k < tilt.size() && tilt[k].is_array() && tilt[k].size() == 2 && tilt[k][0].is_number() && tilt[k][1].is_number()) {
+        s.tilt_x = tilt[k][0].get<double>();
+        s.tilt_y = tilt[k][1].get<double>();
+      }
       raw.samples.push_back(s);
     }
     std::map<int, double> overrides;

@@ -17,5 +17,6 @@ int main(int argc, char** argv) {
     else window.importPoints(args[i]);
   }
   window.show();
+  window.offerRecovery();
   return app.exec();
 }

@@ -258,6 +258,29 @@ void MainWindow::refreshRecentMenu() {
   m_recent->setEnabled(!m_recent->isEmpty());
 }
 
+bool MainWindow::loadBackground(const QString& path) {
+  QImage image(path);
+  if (image.isNull()) {
+    showError(path + ": not an image Qt can read");
+    return false;
+  }
+  m_canvas->setBackground(image, m_canvas->backgroundOpacity());
+  return true;
+}
+
+bool MainWindow::offerRecovery() {
+  const QString lock = autosavePath() + ".running";
+  const bool crashed = QFileInfo::exists(lock) && QFileInfo::exists(autosavePath());
+  QFile(lock).open(QIODevice::WriteOnly);  // removed again by a clean exit (destructor)
+  if (!crashed || qEnvironmentVariableIsSet("LAFAIR_NO_DIALOGS")) return crashed;
+  if (QMessageBox::question(this, "lafair", "The last session did not end cleanly. Recover the autosaved sketch?") ==
+      QMessageBox::Yes)
+    openFile(autosavePath());
+  return true;
+}
+
+MainWindow::~MainWindow() { QFile::remove(autosavePath() + ".running"); }
+
 bool MainWindow::exportPng(const QString& path) {
   const QPixmap canvas = m_canvas->grab(), plot = m_plot->grab(), lcg = m_lcg->grab();
   QImage out(canvas.width() + std::max(plot.width(), lcg.width()), std::max(canvas.height(), plot.height() + lcg.height()),
@@ -419,6 +442,10 @@ void MainWindow::buildMenus() {
     else showError("no autosaved sketch");
   });
   file->addSeparator();
+  file->addAction("Import &background image…", this, [this] {
+    const QString p = QFileDialog::getOpenFileName(this, "Background image", {}, "Images (*.png *.jpg *.jpeg *.bmp *.gif)");
+    if (!p.isEmpty()) loadBackground(p);
+  });
   file->addAction("&Import points…", this, [this] {
     const QString p = QFileDialog::getOpenFileName(this, "Import points", {}, "Points (*.csv *.txt *.dat *.json *.svg)");
     if (!p.isEmpty()) importPoints(p);
@@ -467,6 +494,11 @@ void MainWindow::buildMenus() {
     bool ok = false;
     const int v = QInputDialog::getInt(this, "Comb density", "Teeth per segment", m_canvas->layers().comb_density, 2, 400, 1, &ok);
     if (ok) m_canvas->layers().comb_density = v, m_canvas->update();
+  });
+  view->addAction("Background &opacity…", this, [this] {
+    bool ok = false;
+    const double v = QInputDialog::getDouble(this, "Background", "Opacity", m_canvas->backgroundOpacity(), 0.0, 1.0, 2, &ok);
+    if (ok) m_canvas->setBackgroundOpacity(v);
   });
   view->addSeparator();
   view->addAction("&Fit view", QKeySequence(Qt::Key_F), m_canvas, &Canvas::fitView);

@@ -25,6 +25,7 @@ class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
   explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
   Document& document() { return m_document; }
   Canvas* canvas() const { return m_canvas; }
   QUndoStack* undoStack() const { return m_undo; }
@@ -39,6 +40,10 @@ class MainWindow : public QMainWindow {
   bool importPoints(const QString& path);
   bool exportFile(const QString& path);  // format from the extension: svg, dxf, json, csv
   bool exportPng(const QString& path);   // the canvas and the plots, side by side
+  bool loadBackground(const QString& path);  // a raster image to trace over
+  /// Offers the autosaved sketch if the last session did not end cleanly (no dialog
+  /// under LAFAIR_NO_DIALOGS: then it only reports whether there is one).
+  bool offerRecovery();
   QString autosavePath() const;
 
   /// Records a stroke (as the canvas does on pen-up), undoably.

@@ -8,6 +8,7 @@
 #include <QApplication>
 #include <QFile>
 #include <QPointingDevice>
+#include <QStandardPaths>
 #include <QTabletEvent>
 #include <QTemporaryDir>
 #include <QTest>
@@ -232,6 +233,22 @@ TEST_F(MainWindowTest, CtrlDragAJointKeepsG2AndUndoes) {
   GTEST_SKIP() << "no joint could be moved";
 }
 
+TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
+  const QString png = dir.filePath("background.png");
+  QImage image(200, 100, QImage::Format_RGB32);
+  image.fill(Qt::yellow);
+  ASSERT_TRUE(image.save(png));
+  EXPECT_TRUE(window->loadBackground(png));
+  EXPECT_TRUE(window->canvas()->hasBackground());
+  EXPECT_FALSE(window->loadBackground(dir.filePath("missing.png")));
+  // a session that did not end cleanly leaves its marker: the next start offers recovery
+  drawWithMouse(window->canvas(), wave());
+  ASSERT_TRUE(window->saveFile(window->autosavePath()));
+  window->offerRecovery();  // this session's marker
+  MainWindow next;          // as if the first had crashed: its marker is still there
+  EXPECT_TRUE(next.offerRecovery());
+}
+
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
   QApplication::processEvents();
@@ -261,6 +278,7 @@ TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
   QApplication app(argc, argv);
+  QStandardPaths::setTestModeEnabled(true);  // autosave and settings go to a test location
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
