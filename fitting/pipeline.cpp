@@ -28,15 +28,18 @@ constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
 constexpr double kStraightTurning = 1e-9;
 // Alpha by least squares: scan points over [min_alpha, max_alpha], golden-section steps
-// after (0.618^8 of two scan steps: ~0.07 in alpha), at most this many points per piece
+// after (0.618^6 of two scan steps: ~0.17 in alpha), at most this many points per piece
 // and samples of the segment for the distances.
 constexpr int kAlphaScan = 5;
-constexpr int kAlphaRefinements = 8;
-constexpr std::size_t kAlphaPoints = 32;
+constexpr int kAlphaRefinements = 6;
+constexpr std::size_t kAlphaPoints = 24;
 constexpr std::size_t kMinPointsForAlphaFit = 24;
-constexpr int kDeviationSamples = 40;
+constexpr int kDeviationSamples = 24;
 // Passes that split pieces which fail (no LA segment) or stray from the points.
 constexpr int kMaxRefinePasses = 8;
+// Resolution of the deviations that decide those splits (relative to the diagonal;
+// 500 times below the default tolerance; the reported figures use 1e-6).
+constexpr double kRefineResolution = 1e-5;
 // Points on an integer grid (pixels) are off the true stroke by up to sqrt(2)/2 of a
 // unit; no curve can be closer to all of them than about this, so the tolerance is
 // not set below it.
@@ -187,7 +190,7 @@ std::vector<double> pieceDeviations(const std::vector<LaSegment>& segments,
     if (mine.empty()) continue;
     Curve one;
     one.pieces.push_back({segments[i], false});
-    for (double d : distancesToCurve(one, mine, diag)) out[i] = std::max(out[i], d);
+    for (double d : distancesToCurve(one, mine, diag, kRefineResolution)) out[i] = std::max(out[i], d);
   }
   return out;
 }

@@ -8,9 +8,6 @@
 namespace la {
 namespace {
 
-// The polyline's chords are kept short enough that their sagitta kappa h^2 / 8 stays
-// below this fraction of the diagonal (1e-6: far below any tolerance a user sets).
-constexpr double kSagittaFraction = 1e-6;
 constexpr int kSearchWindow = 24;  // polyline edges either side of the previous foot, to start with
 
 double pointToEdge(const Vec2& p, const Vec2& a, const Vec2& b) {
@@ -23,13 +20,14 @@ double pointToEdge(const Vec2& p, const Vec2& a, const Vec2& b) {
 
 }  // namespace
 
-std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal) {
+std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal,
+                                     double resolution) {
   std::vector<Vec2> poly;
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
     const LaSegment& seg = piece.segment;
     const double kmax = std::max(std::abs(seg.kappaStart()), std::abs(seg.kappaEnd()));
-    const double h = std::sqrt(8.0 * kSagittaFraction * diagonal / std::max(kmax, 1e-300));
+    const double h = std::sqrt(8.0 * resolution * diagonal / std::max(kmax, 1e-300));
     const int n = std::clamp(static_cast<int>(std::ceil(seg.length() / h)) + 1, 8, 100000);
     smp.clear();
     seg.sample(n, smp);

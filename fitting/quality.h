@@ -22,9 +22,11 @@ struct QualityFigures {
   double diagonal = 0.0;  // bounding-box diagonal of the input points
 };
 
-/// Distances from each point to the curve (a dense polyline of the curve, searched near
-/// the previous point's foot first, everywhere when that is not close).
-std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal);
+/// Distances from each point to the curve: to a polyline of the curve whose chords stay
+/// within `resolution` * diagonal of it (their sagitta kappa h^2 / 8), searched near the
+/// previous point's foot first, everywhere when that is not close.
+std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal,
+                                     double resolution = 1e-6);
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
 
