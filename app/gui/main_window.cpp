@@ -378,11 +378,17 @@ bool MainWindow::importPoints(const QString& path) {
   return true;
 }
 
-bool MainWindow::exportFile(const QString& path) {
+bool MainWindow::exportFile(const QString& path, bool selected_only) {
+  if (selected_only && m_selected_stroke < 0) {
+    showError("select a curve first (right-click it)");
+    return false;
+  }
   std::vector<Curve> curves;
   std::vector<std::vector<Vec2>> points;
   std::vector<CurveOrError> entries;
-  for (const DocumentStroke& s : m_document.strokes()) {
+  for (std::size_t k = 0; k < m_document.strokes().size(); ++k) {
+    if (selected_only && static_cast<int>(k) != m_selected_stroke) continue;
+    const DocumentStroke& s = m_document.strokes()[k];
     if (!s.fit) {
       entries.push_back({std::nullopt, s.error});
       continue;
@@ -453,6 +459,10 @@ void MainWindow::buildMenus() {
   file->addAction("&Export curves…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export curves", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
     if (!p.isEmpty()) exportFile(p);
+  });
+  file->addAction("Export &selected curve…", this, [this] {
+    const QString p = QFileDialog::getSaveFileName(this, "Export selected curve", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
+    if (!p.isEmpty()) exportFile(p, true);
   });
   file->addAction("Export &picture (PNG)…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export picture", {}, "PNG (*.png)");

@@ -38,7 +38,8 @@ class MainWindow : public QMainWindow {
   bool openFile(const QString& path);
   bool saveFile(const QString& path);
   bool importPoints(const QString& path);
-  bool exportFile(const QString& path);  // format from the extension: svg, dxf, json, csv
+  /// Format from the extension: svg, dxf, json, csv. All curves, or only the selected stroke's.
+  bool exportFile(const QString& path, bool selected_only = false);
   bool exportPng(const QString& path);   // the canvas and the plots, side by side
   bool loadBackground(const QString& path);  // a raster image to trace over
   /// Offers the autosaved sketch if the last session did not end cleanly (no dialog

@@ -138,6 +138,14 @@ TEST_F(MainWindowTest, ImportEveryFileTypeAndExportEveryFormat) {
     EXPECT_TRUE(window->exportFile(out)) << ext;
     EXPECT_GT(QFile(out).size(), 100) << ext;
   }
+  // only the selected stroke: fewer curves in the JSON
+  EXPECT_FALSE(window->exportFile(dir.filePath("none.json"), true)) << "nothing selected yet";
+  window->selectSegment(3, 0);
+  ASSERT_TRUE(window->exportFile(dir.filePath("one.json"), true));
+  QFile all(dir.filePath("curves.json")), one(dir.filePath("one.json"));
+  ASSERT_TRUE(all.open(QIODevice::ReadOnly) && one.open(QIODevice::ReadOnly));
+  EXPECT_EQ(QString(one.readAll()).count("\"segments\""), 1);
+  EXPECT_EQ(QString(all.readAll()).count("\"segments\""), 4);
 }
 
 TEST_F(MainWindowTest, BadFilesGiveAnErrorAndKeepTheSketch) {
