@@ -57,7 +57,7 @@ void Canvas::fitView() {
   const double scale = 0.85 * std::min(width() / w, height() / h);
   m_view = QTransform();
   m_view.translate(width() / 2.0, height() / 2.0);
-  m_view.scale(scale, scale);
+  m_view.scale(scale, m_layers.y_up ? -scale : scale);
   m_view.translate(-(x0 + x1) / 2.0, -(y0 + y1) / 2.0);
   update();
 }

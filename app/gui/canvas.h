@@ -23,6 +23,7 @@ struct Layers {
   bool comb = true;
   bool markers = true;  // joints, inflections, extrema
   bool triangles = false;  // each segment's control triangle
+  bool y_up = false;       // show the world's y axis pointing up (profiles, font outlines)
   double comb_scale = 0.08;  // longest tooth, relative to the view's shorter side
   int comb_density = 24;     // teeth per segment
 };

@@ -495,6 +495,12 @@ void MainWindow::buildMenus() {
   toggle("Curvature comb", &Layers::comb);
   toggle("Joints, inflections, corners", &Layers::markers);
   toggle("Control triangles", &Layers::triangles);
+  QAction* y_up = view->addAction("Y axis &up");
+  y_up->setCheckable(true);
+  connect(y_up, &QAction::toggled, this, [this](bool on) {
+    m_canvas->layers().y_up = on;
+    m_canvas->fitView();
+  });
   view->addAction("Comb &scale…", this, [this] {
     bool ok = false;
     const double v = QInputDialog::getDouble(this, "Comb scale", "Longest tooth (fraction of the view)", m_canvas->layers().comb_scale, 0.005, 1.0, 3, &ok);
