@@ -90,7 +90,7 @@ void CubicBSpline::basis(int i, double t, double ders[4][4], int order) const {
   }
   for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
   if (order <= 0) return;
-  double a[2][p + 1];
+  double a[2][p + 1] = {};
   for (int r = 0; r <= p; ++r) {
     int s1 = 0, s2 = 1;
     a[0][0] = 1.0;

@@ -2,6 +2,7 @@
 // Plane geometry shared by every layer: points are Eigen 2-vectors, angles radians.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -30,6 +31,14 @@ inline double signedAngle(const Vec2& a, const Vec2& b) {
 }
 
 inline bool allFinite(const Vec2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+
+/// Distance from p to the segment [a, b] (to a if the segment is a point).
+inline double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).norm();
+}
 
 /// Diagonal of the axis-aligned bounding box (0 for no points): the scale every
 /// relative tolerance and figure in the project refers to.

@@ -229,12 +229,8 @@ double squaredDeviation(const LaSegment& seg, const std::vector<Vec2>& points) {
   double sum = 0.0;
   for (const Vec2& p : points) {
     double best = INFINITY;
-    for (std::size_t e = 0; e + 1 < smp.point.size(); ++e) {
-      const Vec2 a = smp.point[e], ab = smp.point[e + 1] - a;
-      const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-      best = std::min(best, (a + t * ab - p).squaredNorm());
-    }
-    sum += best;
+    for (std::size_t e = 0; e + 1 < smp.point.size(); ++e) best = std::min(best, distanceToSegment(p, smp.point[e], smp.point[e + 1]));
+    sum += best * best;
   }
   return sum;
 }

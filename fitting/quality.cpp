@@ -10,12 +10,6 @@ namespace {
 
 constexpr int kSearchWindow = 24;  // polyline edges either side of the previous foot, to start with
 
-double pointToEdge(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
 
 
 }  // namespace
@@ -41,7 +35,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
   const int edges = static_cast<int>(poly.size()) - 1;
   auto nearest = [&](const Vec2& p, int lo, int hi, double& best, int& best_e) {
     for (int e = std::max(0, lo); e <= std::min(edges - 1, hi); ++e) {
-      const double d = pointToEdge(p, poly[e], poly[e + 1]);
+      const double d = distanceToSegment(p, poly[e], poly[e + 1]);
       if (d < best) best = d, best_e = e;
     }
   };

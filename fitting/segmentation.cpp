@@ -165,8 +165,6 @@ Segmentation segmentSpline(const CubicBSpline& spline, double t_begin, double t_
   }
   const double end0 = spline.curvature(t_begin), end1 = spline.curvature(t_end);
   kappa_max = std::max({kappa_max, std::abs(end0), std::abs(end1)});
-  out.extrema_found = static_cast<int>(extrema.size());
-  out.inflections_found = static_cast<int>(zeros.size());
 
   simplify(extrema, out.closed, end0, end1, options.significance * kappa_max, options.max_extrema);
   relocateExtrema(spline, extrema, out.closed, t_begin, t_end);

@@ -43,8 +43,6 @@ struct Segmentation {
   /// (the last piece wraps through the parameter seam).
   std::vector<SplitPoint> splits;
   bool closed = false;
-  int extrema_found = 0;        // before simplification
-  int inflections_found = 0;
   std::size_t pieceCount() const { return closed ? splits.size() : splits.size() - 1; }
 };
 

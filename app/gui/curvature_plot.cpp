@@ -1,5 +1,7 @@
 #include "app/gui/curvature_plot.h"
 
+#include "app/gui/chart.h"
+
 #include <QPainter>
 #include <algorithm>
 #include <cmath>
@@ -57,16 +59,8 @@ void CurvaturePlot::setFit(const FitResult* fit) {
 
 void CurvaturePlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
-  p.setRenderHint(QPainter::Antialiasing);
-  p.fillRect(rect(), Qt::white);
   const QRectF area(56, 14, width() - 70, height() - 48);
-  p.setPen(Qt::black);
-  p.drawText(QRectF(0, height() - 18, width(), 16), Qt::AlignCenter, "arc length s");
-  p.save();
-  p.translate(12, area.center().y());
-  p.rotate(-90);
-  p.drawText(QRectF(-60, -10, 120, 16), Qt::AlignCenter, "curvature κ");
-  p.restore();
+  drawChartPage(p, *this, area, "arc length s", "curvature κ");
   if (m_after.s.empty()) {
     p.drawText(area, Qt::AlignCenter, "draw a stroke to see its curvature");
     return;

@@ -53,33 +53,34 @@ void Document::fit(DocumentStroke& s) const {
   }
 }
 
-std::string Document::moveJoint(std::size_t stroke, int piece, const Vec2& position) {
+template <class Edit, class Remember>
+std::string Document::editStroke(std::size_t stroke, Edit&& edit, Remember&& remember) {
   if (stroke >= strokes_.size() || !strokes_[stroke].fit) return "no fitted stroke there";
   DocumentStroke& s = strokes_[stroke];
   std::string why;
-  auto moved = withJointMoved(*s.fit, static_cast<std::size_t>(piece), position, options_, &why);
-  if (!moved) return why;
-  s.fit = std::move(moved);
-  s.joint_overrides[piece] = position;
+  std::optional<FitResult> edited = edit(*s.fit, &why);
+  if (!edited) return why;
+  s.fit = std::move(edited);
+  remember(s);
   return {};
 }
 
 std::string Document::steerSegment(std::size_t stroke, int piece, double alpha) {
-  if (stroke >= strokes_.size() || !strokes_[stroke].fit) return "no fitted stroke selected";
-  DocumentStroke& s = strokes_[stroke];
-  std::string why;
-  auto steered = withSegmentAlpha(*s.fit, static_cast<std::size_t>(piece), alpha, options_, &why);
-  if (!steered) return why;
-  s.fit = std::move(steered);
-  s.alpha_overrides[piece] = alpha;
-  return {};
+  return editStroke(
+      stroke,
+      [&](const FitResult& f, std::string* why) { return withSegmentAlpha(f, static_cast<std::size_t>(piece), alpha, options_, why); },
+      [&](DocumentStroke& s) { s.alpha_overrides[piece] = alpha; });
 }
 
-void Document::setOverrides(std::size_t stroke, const std::map<int, double>& alphas, const std::map<int, Vec2>& joints) {
-  if (stroke >= strokes_.size()) return;
-  strokes_[stroke].alpha_overrides = alphas;
-  strokes_[stroke].joint_overrides = joints;
-  fit(strokes_[stroke]);
+std::string Document::moveJoint(std::size_t stroke, int piece, const Vec2& position) {
+  return editStroke(
+      stroke,
+      [&](const FitResult& f, std::string* why) { return withJointMoved(f, static_cast<std::size_t>(piece), position, options_, why); },
+      [&](DocumentStroke& s) { s.joint_overrides[piece] = position; });
+}
+
+void Document::restoreStroke(std::size_t index, DocumentStroke stroke) {
+  if (index < strokes_.size()) strokes_[index] = std::move(stroke);
 }
 
 std::size_t Document::addStroke(const Stroke& raw) {

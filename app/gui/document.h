@@ -36,8 +36,8 @@ class Document {
   std::string steerSegment(std::size_t stroke, int piece, double alpha);
   /// Moves the start joint of a segment (kept across refits like the alphas).
   std::string moveJoint(std::size_t stroke, int piece, const Vec2& position);
-  /// Puts a stroke's overrides back as they were (for undo) and refits it.
-  void setOverrides(std::size_t stroke, const std::map<int, double>& alphas, const std::map<int, Vec2>& joints);
+  /// Puts a stroke back exactly as it was (for undo; no refit).
+  void restoreStroke(std::size_t index, DocumentStroke stroke);
   void clear();
 
   /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},
@@ -48,6 +48,10 @@ class Document {
 
  private:
   void fit(DocumentStroke& s) const;
+  // Runs one user edit of a fitted stroke: `edit` returns the edited fit or nothing
+  // (with why); on success `remember` records the edit as an override.
+  template <class Edit, class Remember>
+  std::string editStroke(std::size_t stroke, Edit&& edit, Remember&& remember);
   std::vector<DocumentStroke> strokes_;
   FitOptions options_;
 };

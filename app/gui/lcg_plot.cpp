@@ -1,5 +1,7 @@
 #include "app/gui/lcg_plot.h"
 
+#include "app/gui/chart.h"
+
 #include <QPainter>
 #include <algorithm>
 #include <cmath>
@@ -52,16 +54,8 @@ void LcgPlot::setSegment(const FitResult* fit, int piece) {
 
 void LcgPlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
-  p.setRenderHint(QPainter::Antialiasing);
-  p.fillRect(rect(), Qt::white);
   const QRectF area(52, 22, width() - 64, height() - 58);
-  p.setPen(Qt::black);
-  p.drawText(QRectF(0, height() - 18, width(), 16), Qt::AlignCenter, "log ρ");
-  p.save();
-  p.translate(12, area.center().y());
-  p.rotate(-90);
-  p.drawText(QRectF(-70, -10, 140, 16), Qt::AlignCenter, "log(ρ |ds/dρ|)");
-  p.restore();
+  drawChartPage(p, *this, area, "log ρ", "log(ρ |ds/dρ|)");
   p.drawRect(area);
   if (m_segment.empty()) {
     p.drawText(area, Qt::AlignCenter, "click a segment to see its LCG");

@@ -20,6 +20,7 @@
 #include <QTimer>
 #include <QUndoCommand>
 #include <QUndoStack>
+#include <functional>
 
 #include "app/gui/canvas.h"
 #include "app/gui/curvature_plot.h"
@@ -77,20 +78,22 @@ class SetOptionsCommand : public QUndoCommand {
   FitOptions m_before, m_after;
 };
 
-class SteerSegmentCommand : public QUndoCommand {
+// A user edit of one fitted stroke (steer a segment's alpha, move a joint). Undo puts
+// the stroke back as it was, overrides and fit together, without refitting.
+class EditStrokeCommand : public QUndoCommand {
  public:
-  SteerSegmentCommand(MainWindow* w, std::size_t stroke, int piece, double alpha)
-      : QUndoCommand("steer segment alpha"), m_window(w), m_stroke(stroke), m_piece(piece), m_alpha(alpha),
-        m_alphas(w->document().strokes()[stroke].alpha_overrides),
-        m_joints(w->document().strokes()[stroke].joint_overrides) {}
+  using Edit = std::function<std::string(Document&)>;
+  EditStrokeCommand(MainWindow* w, const QString& text, std::size_t stroke, int piece, Edit edit)
+      : QUndoCommand(text), m_window(w), m_stroke(stroke), m_piece(piece), m_edit(std::move(edit)),
+        m_before(w->document().strokes()[stroke]) {}
   void redo() override {
-    const std::string why = m_window->document().steerSegment(m_stroke, m_piece, m_alpha);
+    const std::string why = m_edit(m_window->document());
     m_window->documentChanged();
     m_window->selectSegment(static_cast<int>(m_stroke), m_piece);
     if (!why.empty()) m_window->showMessage(QString::fromStdString(why));
   }
   void undo() override {
-    m_window->document().setOverrides(m_stroke, m_alphas, m_joints);
+    m_window->document().restoreStroke(m_stroke, m_before);
     m_window->documentChanged();
     m_window->selectSegment(static_cast<int>(m_stroke), m_piece);
   }
@@ -99,34 +102,8 @@ class SteerSegmentCommand : public QUndoCommand {
   MainWindow* m_window;
   std::size_t m_stroke;
   int m_piece;
-  double m_alpha;
-  std::map<int, double> m_alphas;
-  std::map<int, Vec2> m_joints;
-};
-
-class MoveJointCommand : public QUndoCommand {
- public:
-  MoveJointCommand(MainWindow* w, std::size_t stroke, int piece, Vec2 position)
-      : QUndoCommand("move joint"), m_window(w), m_stroke(stroke), m_piece(piece), m_position(position),
-        m_alphas(w->document().strokes()[stroke].alpha_overrides),
-        m_joints(w->document().strokes()[stroke].joint_overrides) {}
-  void redo() override {
-    const std::string why = m_window->document().moveJoint(m_stroke, m_piece, m_position);
-    m_window->documentChanged();
-    if (!why.empty()) m_window->showMessage(QString::fromStdString(why));
-  }
-  void undo() override {
-    m_window->document().setOverrides(m_stroke, m_alphas, m_joints);
-    m_window->documentChanged();
-  }
-
- private:
-  MainWindow* m_window;
-  std::size_t m_stroke;
-  int m_piece;
-  Vec2 m_position;
-  std::map<int, double> m_alphas;
-  std::map<int, Vec2> m_joints;
+  Edit m_edit;
+  DocumentStroke m_before;
 };
 
 }  // namespace
@@ -171,11 +148,16 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     m_canvas->setPreview(withJointMoved(*s.fit, static_cast<std::size_t>(piece), Vec2(w.x(), w.y()), m_document.options()));
   });
   connect(m_canvas, &Canvas::jointDropped, this, [this](int stroke, int piece, const QPointF& w) {
-    m_undo->push(new MoveJointCommand(this, static_cast<std::size_t>(stroke), piece, Vec2(w.x(), w.y())));
+    const Vec2 to(w.x(), w.y());
+    m_undo->push(new EditStrokeCommand(this, "move joint", static_cast<std::size_t>(stroke), piece,
+                                       [=](Document& d) { return d.moveJoint(static_cast<std::size_t>(stroke), piece, to); }));
   });
   connect(m_parameters, &ParameterPanel::segmentAlphaChanged, this, [this](double a) {
     if (m_selected_stroke >= 0 && m_selected_piece >= 0)
-      m_undo->push(new SteerSegmentCommand(this, static_cast<std::size_t>(m_selected_stroke), m_selected_piece, a));
+      m_undo->push(new EditStrokeCommand(this, "steer segment alpha", static_cast<std::size_t>(m_selected_stroke),
+                                         m_selected_piece, [stroke = m_selected_stroke, piece = m_selected_piece, a](Document& d) {
+                                           return d.steerSegment(static_cast<std::size_t>(stroke), piece, a);
+                                         }));
   });
   m_autosave = new QTimer(this);
   connect(m_autosave, &QTimer::timeout, this, &MainWindow::autosave);
