@@ -23,6 +23,11 @@ struct Chain {
   std::vector<double> angles;     // tangent angle at each joint (same count as joints)
   std::vector<ChainPiece> pieces;
   bool closed = false;            // the last joint is the first: its angle is shared
+  /// Joints whose tangent angle the user fixed (by dragging a control triangle's apex):
+  /// empty, or one flag per joint. Such a joint slides along its tangent line instead,
+  /// which keeps the apex where the user put it.
+  std::vector<bool> sliding;
+  bool slides(std::size_t joint) const { return !sliding.empty() && sliding[joint]; }
   std::size_t size() const { return pieces.size(); }
 };
 

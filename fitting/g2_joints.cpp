@@ -39,7 +39,17 @@ class JointSystem {
     if (chain_.closed && joint == 0) chain_.angles[chain_.size()] += value - chain_.angles[0];
     chain_.angles[joint] = value;
   }
-  double angle(std::size_t joint) const { return chain_.angles[joint]; }
+  // The unknown of a joint's equation: its tangent angle, or for a sliding joint its
+  // position along the tangent line.
+  double unknown(std::size_t joint) const {
+    return chain_.slides(joint) ? chain_.joints[joint].dot(unitVector(chain_.angles[joint])) : chain_.angles[joint];
+  }
+  void setUnknown(std::size_t joint, double value) {
+    if (!chain_.slides(joint)) return setAngle(joint, value);
+    const Vec2 shift = (value - unknown(joint)) * unitVector(chain_.angles[joint]);
+    chain_.joints[joint] += shift;
+    if (chain_.closed && joint == 0) chain_.joints[chain_.size()] += shift;
+  }
 
   bool solvePieceAt(std::size_t i) {
     solves_[i] = solvePiece(chain_, i);
@@ -100,17 +110,17 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
     // Jacobian by forward differences, one joint at a time (two piece solves each).
     Eigen::MatrixXd jac(m, m);
     for (int k = 0; k < m; ++k) {
-      const double saved = sys.angle(eq[k]);
-      sys.setAngle(eq[k], saved + kAngleStep);
+      const double saved = sys.unknown(eq[k]);
+      sys.setUnknown(eq[k], saved + kAngleStep);
       const bool ok = sys.solveAround(eq[k]);
       if (ok) jac.col(k) = (sys.residual() - f) / kAngleStep;
-      sys.setAngle(eq[k], saved);
+      sys.setUnknown(eq[k], saved);
       sys.solveAround(eq[k]);
       if (!ok) {  // step to the other side
-        sys.setAngle(eq[k], saved - kAngleStep);
+        sys.setUnknown(eq[k], saved - kAngleStep);
         if (!sys.solveAround(eq[k])) return {SolveStatus::kInfeasible, iter, worst, "joint " + std::to_string(eq[k]) + " is at the edge of feasibility"};
         jac.col(k) = (f - sys.residual()) / kAngleStep;
-        sys.setAngle(eq[k], saved);
+        sys.setUnknown(eq[k], saved);
         sys.solveAround(eq[k]);
       }
     }
@@ -119,11 +129,11 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
     const double biggest = step.cwiseAbs().maxCoeff();
     if (biggest > kMaxAngleStep) step *= kMaxAngleStep / biggest;
     std::vector<double> start(m);
-    for (int k = 0; k < m; ++k) start[k] = sys.angle(eq[k]);
+    for (int k = 0; k < m; ++k) start[k] = sys.unknown(eq[k]);
     bool accepted = false;
     double lambda = 1.0;
     for (int h = 0; h < kMaxHalvings && !accepted; ++h, lambda *= 0.5) {
-      for (int k = 0; k < m; ++k) sys.setAngle(eq[k], start[k] + lambda * step[k]);
+      for (int k = 0; k < m; ++k) sys.setUnknown(eq[k], start[k] + lambda * step[k]);
       if (!sys.solveAll()) continue;
       const Eigen::VectorXd trial = sys.residual();
       if (trial.cwiseAbs().maxCoeff() < f.cwiseAbs().maxCoeff()) {
@@ -132,7 +142,7 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
       }
     }
     if (!accepted) {
-      for (int k = 0; k < m; ++k) sys.setAngle(eq[k], start[k]);
+      for (int k = 0; k < m; ++k) sys.setUnknown(eq[k], start[k]);
       sys.solveAll();
       return {SolveStatus::kIterationLimit, iter + 1, worst, "G2 Newton stalled (no step reduces the gaps)"};
     }
@@ -150,9 +160,9 @@ SolveReport bisection(JointSystem& sys, const G2Options& options) {
     if (worst <= options.threshold) return {SolveStatus::kConverged, round, worst, "G2 by joint bisection"};
     if (round == budget) break;
     const std::size_t joint = eq[worst_k];
-    const double a0 = sys.angle(joint), g0 = sys.gap(joint);
+    const double a0 = sys.unknown(joint), g0 = sys.gap(joint);
     auto gap_at = [&](double a, bool* ok) {
-      sys.setAngle(joint, a);
+      sys.setUnknown(joint, a);
       *ok = sys.solveAround(joint);
       return *ok ? sys.gap(joint) : NAN;
     };
@@ -177,7 +187,7 @@ SolveReport bisection(JointSystem& sys, const G2Options& options) {
       }
     }
     if (!found) {
-      sys.setAngle(joint, a0);
+      sys.setUnknown(joint, a0);
       sys.solveAround(joint);
       return {SolveStatus::kInfeasible, round, worst, "joint " + std::to_string(joint) + ": no tangent angle closes the curvature gap"};
     }
@@ -193,9 +203,9 @@ SolveReport bisection(JointSystem& sys, const G2Options& options) {
       return std::pair{good ? g : (increasing ? -1e300 : 1e300), NAN};  // NaN slope: pure bisection
     };
     const RootResult r = solveMonotone(f, lo, hi, 0.5 * (lo + hi), increasing, root);
-    sys.setAngle(joint, r.report.usable() ? r.x : a0);
+    sys.setUnknown(joint, r.report.usable() ? r.x : a0);
     if (!sys.solveAround(joint)) {
-      sys.setAngle(joint, a0);
+      sys.setUnknown(joint, a0);
       sys.solveAround(joint);
       return {SolveStatus::kInfeasible, round, worst, "joint " + std::to_string(joint) + ": bisection left the feasible range"};
     }

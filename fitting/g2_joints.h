@@ -12,6 +12,8 @@
 //    joints j-1, j, j+1, so the Jacobian is tridiagonal (cyclic for a closed chain);
 //    it is built by finite differences (two piece solves per joint) and each step is
 //    halved until no piece becomes infeasible and the gaps shrink.
+// A sliding joint (Chain::sliding) keeps its angle and moves along its tangent line
+// instead; that shapes the same two pieces, so the system stays square and tridiagonal.
 // A joint between two inflection ends has kappa = 0 on both sides by construction:
 // its angle stays put and it has no equation.
 

@@ -87,11 +87,20 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options = {});
 std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
                                           const FitOptions& options, std::string* why = nullptr);
 
-/// The user dragging a joint: moves the start point of segment `piece` (the joint
-/// between it and the one before; piece 0 moves the curve's start) to `position` and
-/// solves G2 again over its corner-to-corner part (alphas kept, tangents free).
-/// std::nullopt with `why` if no G2 chain exists there.
-std::optional<FitResult> withJointMoved(const FitResult& fit, std::size_t piece, const Vec2& position,
+/// The user dragging a joint: moves joint `joint` (the start of segment `joint`; the
+/// open curve's end is joint n, n the number of segments) to `position` and solves G2
+/// again over its corner-to-corner part (alphas kept, tangents free). A corner moves
+/// both parts that meet there and stays a corner. std::nullopt with `why` if no G2
+/// chain exists there.
+std::optional<FitResult> withJointMoved(const FitResult& fit, std::size_t joint, const Vec2& position,
                                         const FitOptions& options, std::string* why = nullptr);
+
+/// The user dragging the apex of segment `piece`'s control triangle (Q1, where its end
+/// tangents meet) to `apex`: the tangents at both its ends point along the triangle's
+/// new sides and stay so; G2 is solved again over its part with those two joints
+/// sliding along their tangent lines (so the apex stays where it was put) and the
+/// other joints' tangents free. std::nullopt with `why` if no G2 chain exists.
+std::optional<FitResult> withApexMoved(const FitResult& fit, std::size_t piece, const Vec2& apex,
+                                       const FitOptions& options, std::string* why = nullptr);
 
 }  // namespace la

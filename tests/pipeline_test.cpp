@@ -792,6 +792,79 @@ TEST(SegmentAlpha, MovedJointKeepsG2) {
   EXPECT_GE(checked, 5);
 }
 
+// Dragging a control triangle's apex (withApexMoved): both end tangents of that segment
+// point at the new apex (its two joints slide along them), the other joints stay, and
+// the curve stays G2.
+TEST(SegmentAlpha, MovedApexFixesBothTangentsAndKeepsG2) {
+  int checked = 0;
+  for (int index = 10; index < 20; ++index) {
+    const FitResult r = fit(truthCase(index).noisy);
+    if (r.curve.pieces.size() < 3) continue;
+    const std::size_t i = 1;
+    const LaSegment& seg = r.curve.pieces[i].segment;
+    if (std::abs(seg.turning()) < 0.1) continue;
+    // The current apex, moved a little along the chord's normal.
+    const Vec2 a = seg.start(), b = seg.end(), u = seg.tangent(0.0), v = seg.tangent(seg.length());
+    const Vec2 old_apex = a + (cross(b - a, v) / cross(u, v)) * u;
+    const Vec2 chord = (b - a).normalized();
+    const Vec2 apex = old_apex + 0.04 * (b - a).norm() * Vec2(-chord.y(), chord.x());
+    std::string why;
+    const std::optional<FitResult> s = withApexMoved(r, i, apex, FitOptions{}, &why);
+    if (!s) continue;  // no G2 chain with those tangents: reported, not forced
+    ++checked;
+    const LaSegment& moved = s->curve.pieces[i].segment;
+    const Vec2 to_apex = (apex - a).normalized(), from_apex = (b - apex).normalized();
+    EXPECT_LT((moved.tangent(0.0) - to_apex).norm(), 1e-9) << "case " << index;
+    EXPECT_LT((moved.tangent(moved.length()) - from_apex).norm(), 1e-9) << "case " << index;
+    EXPECT_LT(s->quality.g2_gap, 1e-6) << "case " << index;
+    EXPECT_LT(s->quality.g1_gap, 1e-9) << "case " << index;
+    for (std::size_t k = 0; k < r.curve.pieces.size(); ++k) {
+      const double moved_by = (s->curve.pieces[k].segment.start() - r.curve.pieces[k].segment.start()).norm();
+      if (k == i || k == i + 1) EXPECT_LT(moved_by, 0.1 * r.quality.diagonal) << "case " << index << " joint " << k;
+      else EXPECT_LT(moved_by, 1e-9 * r.quality.diagonal) << "case " << index << " joint " << k;
+    }
+  }
+  EXPECT_GE(checked, 5);
+}
+
+// The open curve's end (joint n) and a corner can be dragged too: a corner moves both
+// parts that meet there and stays a corner.
+TEST(SegmentAlpha, MovedEndAndCornerKeepG2) {
+  // A caret: two bowed arms meeting at a sharp corner.
+  std::vector<Vec2> points;
+  for (int k = 0; k <= 200; ++k) {
+    const double t = k / 200.0;
+    points.push_back({100.0 * t, 160.0 * t - 40.0 * t * t});
+  }
+  for (int k = 1; k <= 200; ++k) {
+    const double t = k / 200.0;
+    points.push_back({100.0 + 100.0 * t, 120.0 - 160.0 * t + 40.0 * t * t});
+  }
+  const FitResult r = fit(points);
+  ASSERT_EQ(r.quality.corners, 1) << describeFit(r);
+  const std::size_t n = r.curve.pieces.size();
+  std::size_t corner = 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if (r.curve.pieces[k].corner) corner = k;
+  ASSERT_GT(corner, 0u);
+
+  const Vec2 end_target = r.curve.pieces[n - 1].segment.end() + Vec2(-3.0, 4.0);
+  const std::optional<FitResult> e = withJointMoved(r, n, end_target, FitOptions{});
+  ASSERT_TRUE(e.has_value());
+  EXPECT_LT((e->curve.pieces[n - 1].segment.end() - end_target).norm(), 1e-9 * r.quality.diagonal);
+  EXPECT_LT(e->quality.g2_gap, 1e-6);
+
+  const Vec2 corner_target = r.curve.pieces[corner].segment.start() + Vec2(2.0, 5.0);
+  const std::optional<FitResult> c = withJointMoved(r, corner, corner_target, FitOptions{});
+  ASSERT_TRUE(c.has_value());
+  EXPECT_TRUE(c->curve.pieces[corner].corner);
+  EXPECT_LT((c->curve.pieces[corner].segment.start() - corner_target).norm(), 1e-12 * r.quality.diagonal);
+  EXPECT_LT((c->curve.pieces[corner - 1].segment.end() - corner_target).norm(), 1e-9 * r.quality.diagonal);
+  EXPECT_LT(c->quality.g2_gap, 1e-6);
+  EXPECT_LT(c->quality.g1_gap, 1e-9);
+  EXPECT_FALSE(withJointMoved(r, n + 1, corner_target, FitOptions{}).has_value());
+}
+
 TEST(SegmentAlpha, InflectionPieceAlphaIsFixed) {
   const FitResult r = fit(truthCase(kRandomCases + 1).noisy);  // the clothoid through an inflection
   for (std::size_t i = 0; i < r.pieces.size(); ++i) {

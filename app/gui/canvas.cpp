@@ -18,6 +18,17 @@ const QColor kRawColor(150, 150, 150);
 const QColor kCurveColor(21, 101, 192);
 const QColor kCombColor(211, 47, 47, 160);
 const QColor kStrokeInkColor(60, 60, 60);
+const QColor kTriangleColor(120, 60, 170);
+
+// Q1 of a segment's control triangle, where its end tangents meet; false for a straight
+// or half-turn segment, which has none.
+bool controlApex(const LaSegment& seg, Vec2& apex) {
+  const Vec2 a = seg.start(), b = seg.end(), u = seg.tangent(0.0), v = seg.tangent(seg.length());
+  const double det = cross(u, v);
+  if (std::abs(seg.turning()) < 1e-9 || std::abs(det) < 1e-12) return false;
+  apex = a + (cross(b - a, v) / det) * u;
+  return true;
+}
 
 }  // namespace
 
@@ -150,16 +161,24 @@ void Canvas::mousePressEvent(QMouseEvent* e) {
     m_panning = true;
     m_pan_anchor = e->position();
   } else if (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ControlModifier) && m_document) {
-    // ctrl+drag moves the joint under the cursor (within 8 pixels)
+    // ctrl+drag moves the joint (the open curve's end too) or the shown control-triangle
+    // apex under the cursor, within 8 pixels
     double best = 8.0;
+    auto consider = [&](const Vec2& q, std::size_t stroke, std::size_t index, bool apex) {
+      const QPointF w = toWidget(q);
+      const double d = std::hypot(w.x() - e->position().x(), w.y() - e->position().y());
+      if (d < best) best = d, m_drag_stroke = static_cast<int>(stroke), m_drag_piece = static_cast<int>(index), m_drag_apex = apex;
+    };
     for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
       const auto& fit = m_document->strokes()[k].fit;
       if (!fit) continue;
-      for (std::size_t i = 0; i < fit->curve.pieces.size(); ++i) {
-        const QPointF q = toWidget(fit->curve.pieces[i].segment.start());
-        const double d = std::hypot(q.x() - e->position().x(), q.y() - e->position().y());
-        if (d < best) best = d, m_drag_stroke = static_cast<int>(k), m_drag_piece = static_cast<int>(i);
+      const auto& pieces = fit->curve.pieces;
+      for (std::size_t i = 0; i < pieces.size(); ++i) {
+        consider(pieces[i].segment.start(), k, i, false);
+        Vec2 apex;
+        if (showsTriangle(static_cast<int>(k), static_cast<int>(i)) && controlApex(pieces[i].segment, apex)) consider(apex, k, i, true);
       }
+      if (!fit->curve.closed && !pieces.empty()) consider(pieces.back().segment.end(), k, pieces.size(), false);
     }
   } else if (e->button() == Qt::LeftButton) {
     beginStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
@@ -192,7 +211,8 @@ void Canvas::mouseMoveEvent(QMouseEvent* e) {
     m_view = m_view * shift;
     update();
   } else if (m_drag_piece >= 0) {
-    emit jointDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
+    if (m_drag_apex) emit apexDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
+    else emit jointDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
   } else if (m_drawing) {
     extendStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
   }
@@ -204,7 +224,8 @@ void Canvas::mouseReleaseEvent(QMouseEvent* e) {
     const int stroke = m_drag_stroke, piece = m_drag_piece;
     m_drag_stroke = m_drag_piece = -1;
     m_preview.reset();
-    emit jointDropped(stroke, piece, toWorld(e->position()));
+    if (m_drag_apex) emit apexDropped(stroke, piece, toWorld(e->position()));
+    else emit jointDropped(stroke, piece, toWorld(e->position()));
     return;
   }
   if (m_panning) m_panning = false;
@@ -213,7 +234,12 @@ void Canvas::mouseReleaseEvent(QMouseEvent* e) {
 
 void Canvas::wheelEvent(QWheelEvent* e) { zoomAbout(e->position(), std::pow(kZoomStep, e->angleDelta().y() / 120.0)); }
 
-void Canvas::paintCurve(QPainter& p, const FitResult& fit, int selected_piece) const {
+bool Canvas::showsTriangle(int stroke, int piece) const {
+  return m_layers.triangles || (stroke == m_selected_stroke && piece == m_selected_piece);
+}
+
+void Canvas::paintCurve(QPainter& p, const FitResult& fit, int stroke) const {
+  const int selected_piece = stroke >= 0 && stroke == m_selected_stroke ? m_selected_piece : -1;
   const Curve& curve = fit.curve;
   if (m_layers.spline) {
     p.setPen(QPen(QColor(46, 160, 67), 1.2, Qt::DashLine));
@@ -233,15 +259,14 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit, int selected_piece) c
   for (std::size_t index = 0; index < curve.pieces.size(); ++index) {
     const CurvePiece& piece = curve.pieces[index];
     const LaSegment& seg = piece.segment;
-    if (m_layers.triangles && std::abs(seg.turning()) > 1e-9) {
-      // Q1 where the end tangents meet
-      const Vec2 a = seg.start(), b = seg.end(), u = seg.tangent(0.0), v = seg.tangent(seg.length());
-      const double det = cross(u, v);
-      if (std::abs(det) > 1e-12) {
-        const Vec2 q1 = a + (cross(b - a, v) / det) * u;
-        p.setPen(QPen(QColor(120, 60, 170), 1.0, Qt::DotLine));
-        p.drawPolyline(QPolygonF({toWidget(a), toWidget(q1), toWidget(b)}));
-      }
+    Vec2 apex;
+    if (stroke >= 0 && showsTriangle(stroke, static_cast<int>(index)) && controlApex(seg, apex)) {
+      p.setPen(QPen(kTriangleColor, 1.0, Qt::DotLine));
+      p.setBrush(Qt::NoBrush);
+      p.drawPolyline(QPolygonF({toWidget(seg.start()), toWidget(apex), toWidget(seg.end())}));
+      p.setPen(QPen(kTriangleColor, 1.2));
+      const QPointF q = toWidget(apex);  // a diamond: ctrl+drag it
+      p.drawPolygon(QPolygonF({q + QPointF(0, -5), q + QPointF(5, 0), q + QPointF(0, 5), q + QPointF(-5, 0)}));
     }
     if (m_layers.comb && comb_world > 0) {
       const CurveSamples teeth = seg.sample(std::max(2, m_layers.comb_density));
@@ -298,7 +323,7 @@ void Canvas::paintEvent(QPaintEvent*) {
         p.setBrush(kRawColor);
         for (const StrokeSample& q : s.raw.samples) p.drawEllipse(toWidget(q.p), 1.8, 1.8);
       }
-      if (s.fit) paintCurve(p, *s.fit, static_cast<int>(k) == m_selected_stroke ? m_selected_piece : -1);
+      if (s.fit) paintCurve(p, *s.fit, static_cast<int>(k));
     }
   }
   if (m_preview) paintCurve(p, *m_preview, -1);

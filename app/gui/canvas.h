@@ -56,8 +56,12 @@ class Canvas : public QWidget {
   void strokeProgress();
   void cursorMoved(const QPointF& world);
   void segmentClicked(int stroke, int piece);  // right click near a segment
-  void jointDragged(int stroke, int piece, const QPointF& world);  // ctrl+drag of a joint, live
-  void jointDropped(int stroke, int piece, const QPointF& world);
+  // ctrl+drag of joint `joint` (the start of that segment; n is an open curve's end), live
+  void jointDragged(int stroke, int joint, const QPointF& world);
+  void jointDropped(int stroke, int joint, const QPointF& world);
+  // ctrl+drag of a shown control triangle's apex (Q1), live
+  void apexDragged(int stroke, int piece, const QPointF& world);
+  void apexDropped(int stroke, int piece, const QPointF& world);
 
  protected:
   void paintEvent(QPaintEvent*) override;
@@ -73,7 +77,10 @@ class Canvas : public QWidget {
   void extendStroke(const QPointF& pos, double pressure, double time_ms, double tilt_x = NAN, double tilt_y = NAN);
   void zoomAbout(const QPointF& center, double factor);
   void endStroke();
-  void paintCurve(QPainter& p, const FitResult& fit, int selected_piece) const;
+  // `stroke` is the document's index (selection, triangles), -1 for the preview.
+  void paintCurve(QPainter& p, const FitResult& fit, int stroke) const;
+  // The triangles layer, or the selected segment: its control triangle and apex handle.
+  bool showsTriangle(int stroke, int piece) const;
 
   const Document* m_document = nullptr;
   Layers m_layers;
@@ -84,7 +91,8 @@ class Canvas : public QWidget {
   Stroke m_current;           // the stroke being drawn, in world coordinates
   qint64 m_stroke_start_ms = 0;
   std::optional<FitResult> m_preview;
-  int m_drag_stroke = -1, m_drag_piece = -1;  // the joint being dragged
+  int m_drag_stroke = -1, m_drag_piece = -1;  // the joint or apex being dragged
+  bool m_drag_apex = false;
   QImage m_background;
   double m_background_opacity = 0.5;
   int m_selected_stroke = -1, m_selected_piece = -1;

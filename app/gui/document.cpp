@@ -31,6 +31,18 @@ FitOptions optionsFromJson(const nlohmann::json& j) {
   return o;
 }
 
+nlohmann::json pointsToJson(const std::map<int, Vec2>& points) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [index, q] : points) j[std::to_string(index)] = {q.x(), q.y()};
+  return j;
+}
+
+std::map<int, Vec2> pointsFromJson(const nlohmann::json& j) {
+  std::map<int, Vec2> points;
+  for (const auto& [key, value] : j.items()) points[std::stoi(key)] = Vec2(value.at(0).get<double>(), value.at(1).get<double>());
+  return points;
+}
+
 }  // namespace
 
 void Document::fit(DocumentStroke& s) const {
@@ -47,9 +59,13 @@ void Document::fit(DocumentStroke& s) const {
     if (piece < 0 || piece >= pieces) continue;  // the segmentation changed under it
     if (auto steered = withSegmentAlpha(*s.fit, static_cast<std::size_t>(piece), alpha, options_)) s.fit = std::move(steered);
   }
-  for (const auto& [piece, position] : s.joint_overrides) {
+  for (const auto& [joint, position] : s.joint_overrides) {
+    if (joint < 0 || joint > pieces) continue;
+    if (auto moved = withJointMoved(*s.fit, static_cast<std::size_t>(joint), position, options_)) s.fit = std::move(moved);
+  }
+  for (const auto& [piece, apex] : s.apex_overrides) {
     if (piece < 0 || piece >= pieces) continue;
-    if (auto moved = withJointMoved(*s.fit, static_cast<std::size_t>(piece), position, options_)) s.fit = std::move(moved);
+    if (auto moved = withApexMoved(*s.fit, static_cast<std::size_t>(piece), apex, options_)) s.fit = std::move(moved);
   }
 }
 
@@ -72,11 +88,18 @@ std::string Document::steerSegment(std::size_t stroke, int piece, double alpha) 
       [&](DocumentStroke& s) { s.alpha_overrides[piece] = alpha; });
 }
 
-std::string Document::moveJoint(std::size_t stroke, int piece, const Vec2& position) {
+std::string Document::moveJoint(std::size_t stroke, int joint, const Vec2& position) {
   return editStroke(
       stroke,
-      [&](const FitResult& f, std::string* why) { return withJointMoved(f, static_cast<std::size_t>(piece), position, options_, why); },
-      [&](DocumentStroke& s) { s.joint_overrides[piece] = position; });
+      [&](const FitResult& f, std::string* why) { return withJointMoved(f, static_cast<std::size_t>(joint), position, options_, why); },
+      [&](DocumentStroke& s) { s.joint_overrides[joint] = position; });
+}
+
+std::string Document::moveApex(std::size_t stroke, int piece, const Vec2& apex) {
+  return editStroke(
+      stroke,
+      [&](const FitResult& f, std::string* why) { return withApexMoved(f, static_cast<std::size_t>(piece), apex, options_, why); },
+      [&](DocumentStroke& s) { s.apex_overrides[piece] = apex; });
 }
 
 void Document::restoreStroke(std::size_t index, DocumentStroke stroke) {
@@ -89,7 +112,7 @@ std::size_t Document::addStroke(const Stroke& raw) {
 }
 
 void Document::insertStroke(std::size_t index, const Stroke& raw) {
-  DocumentStroke s{raw, std::nullopt, {}, {}, {}};
+  DocumentStroke s{raw, std::nullopt, {}, {}, {}, {}};
   fit(s);
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
 }
@@ -119,10 +142,8 @@ void Document::save(const QString& path) const {
     }
     nlohmann::json overrides = nlohmann::json::object();
     for (const auto& [piece, alpha] : s.alpha_overrides) overrides[std::to_string(piece)] = alpha;
-    nlohmann::json joints = nlohmann::json::object();
-    for (const auto& [piece, q] : s.joint_overrides) joints[std::to_string(piece)] = {q.x(), q.y()};
     strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"tilt", tilt}, {"alpha_overrides", overrides},
-                       {"joint_overrides", joints}});
+                       {"joint_overrides", pointsToJson(s.joint_overrides)}, {"apex_overrides", pointsToJson(s.apex_overrides)}});
     curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
   const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", optionsToJson(options_)},
@@ -167,10 +188,9 @@ void Document::load(const QString& path) {
     std::map<int, double> overrides;
     const nlohmann::json saved = strokes[i].value("alpha_overrides", nlohmann::json::object());
     for (const auto& [key, value] : saved.items()) overrides[std::stoi(key)] = value.get<double>();
-    std::map<int, Vec2> joints;
-    const nlohmann::json saved_joints = strokes[i].value("joint_overrides", nlohmann::json::object());
-    for (const auto& [key, value] : saved_joints.items()) joints[std::stoi(key)] = Vec2(value.at(0).get<double>(), value.at(1).get<double>());
-    loaded.push_back({raw, std::nullopt, {}, overrides, joints});
+    loaded.push_back({raw, std::nullopt, {}, overrides,
+                      pointsFromJson(strokes[i].value("joint_overrides", nlohmann::json::object())),
+                      pointsFromJson(strokes[i].value("apex_overrides", nlohmann::json::object()))});
   }
   } catch (const nlohmann::json::exception& e) {  // missing key, wrong type
     throw std::runtime_error(name + ": " + e.what());

@@ -18,7 +18,8 @@ struct DocumentStroke {
   std::optional<FitResult> fit;  // empty if the stroke could not be fitted
   std::string error;             // why, then
   std::map<int, double> alpha_overrides;  // the user's alpha per segment, reapplied after each fit
-  std::map<int, Vec2> joint_overrides;    // the user's position of a segment's start joint, likewise
+  std::map<int, Vec2> joint_overrides;    // the user's position of joint i (segment i's start; n the end), likewise
+  std::map<int, Vec2> apex_overrides;     // the user's control-triangle apex of a segment, likewise
 };
 
 class Document {
@@ -34,8 +35,11 @@ class Document {
   /// Gives a segment the user's alpha (kept across refits while the segmentation has
   /// the same number of pieces). Returns "" or why it cannot.
   std::string steerSegment(std::size_t stroke, int piece, double alpha);
-  /// Moves the start joint of a segment (kept across refits like the alphas).
-  std::string moveJoint(std::size_t stroke, int piece, const Vec2& position);
+  /// Moves joint `joint` (segment joint's start; n the open curve's end; kept across
+  /// refits like the alphas).
+  std::string moveJoint(std::size_t stroke, int joint, const Vec2& position);
+  /// Moves the apex of a segment's control triangle (its end tangents follow).
+  std::string moveApex(std::size_t stroke, int piece, const Vec2& apex);
   /// Puts a stroke back exactly as it was (for undo; no refit).
   void restoreStroke(std::size_t index, DocumentStroke stroke);
   void clear();

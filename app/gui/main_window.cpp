@@ -142,15 +142,31 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
     m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
   });
-  connect(m_canvas, &Canvas::jointDragged, this, [this](int stroke, int piece, const QPointF& w) {
+  // Ctrl+drag of a joint or a control-triangle apex: a live preview while dragging, one
+  // undoable edit on release.
+  auto preview_edit = [this](int stroke, const std::function<std::optional<FitResult>(const FitResult&)>& edit) {
     const auto& s = m_document.strokes()[static_cast<std::size_t>(stroke)];
-    if (!s.fit) return;
-    m_canvas->setPreview(withJointMoved(*s.fit, static_cast<std::size_t>(piece), Vec2(w.x(), w.y()), m_document.options()));
+    if (s.fit) m_canvas->setPreview(edit(*s.fit));
+  };
+  connect(m_canvas, &Canvas::jointDragged, this, [=, this](int stroke, int joint, const QPointF& w) {
+    preview_edit(stroke, [&](const FitResult& f) {
+      return withJointMoved(f, static_cast<std::size_t>(joint), Vec2(w.x(), w.y()), m_document.options());
+    });
   });
-  connect(m_canvas, &Canvas::jointDropped, this, [this](int stroke, int piece, const QPointF& w) {
+  connect(m_canvas, &Canvas::apexDragged, this, [=, this](int stroke, int piece, const QPointF& w) {
+    preview_edit(stroke, [&](const FitResult& f) {
+      return withApexMoved(f, static_cast<std::size_t>(piece), Vec2(w.x(), w.y()), m_document.options());
+    });
+  });
+  connect(m_canvas, &Canvas::jointDropped, this, [this](int stroke, int joint, const QPointF& w) {
     const Vec2 to(w.x(), w.y());
-    m_undo->push(new EditStrokeCommand(this, "move joint", static_cast<std::size_t>(stroke), piece,
-                                       [=](Document& d) { return d.moveJoint(static_cast<std::size_t>(stroke), piece, to); }));
+    m_undo->push(new EditStrokeCommand(this, "move joint", static_cast<std::size_t>(stroke), joint,
+                                       [=](Document& d) { return d.moveJoint(static_cast<std::size_t>(stroke), joint, to); }));
+  });
+  connect(m_canvas, &Canvas::apexDropped, this, [this](int stroke, int piece, const QPointF& w) {
+    const Vec2 to(w.x(), w.y());
+    m_undo->push(new EditStrokeCommand(this, "move control point", static_cast<std::size_t>(stroke), piece,
+                                       [=](Document& d) { return d.moveApex(static_cast<std::size_t>(stroke), piece, to); }));
   });
   connect(m_parameters, &ParameterPanel::segmentAlphaChanged, this, [this](double a) {
     if (m_selected_stroke >= 0 && m_selected_piece >= 0)
@@ -201,10 +217,11 @@ void MainWindow::updatePreview() {
 }
 
 void MainWindow::selectSegment(int stroke, int piece) {
-  m_selected_stroke = stroke;
-  m_selected_piece = piece;
   const auto& strokes = m_document.strokes();
   const FitResult* fit = (stroke >= 0 && stroke < static_cast<int>(strokes.size()) && strokes[stroke].fit) ? &*strokes[stroke].fit : nullptr;
+  if (fit) piece = std::min(piece, static_cast<int>(fit->pieces.size()) - 1);  // the end joint selects the last segment
+  m_selected_stroke = stroke;
+  m_selected_piece = piece;
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
   if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke

@@ -241,6 +241,40 @@ TEST_F(MainWindowTest, CtrlDragAJointKeepsG2AndUndoes) {
   GTEST_SKIP() << "no joint could be moved";
 }
 
+// The selected segment shows its control triangle; ctrl+dragging its apex (Q1) turns
+// both end tangents towards the new apex, the curve stays G2, and undo restores it.
+TEST_F(MainWindowTest, CtrlDragTheApexKeepsG2AndUndoes) {
+  drawWithMouse(window->canvas(), wave());
+  const FitResult before = lastFit();
+  Canvas* canvas = window->canvas();
+  for (std::size_t i = 0; i < before.curve.pieces.size(); ++i) {
+    const LaSegment& seg = before.curve.pieces[i].segment;
+    const Vec2 a = seg.start(), b = seg.end(), u = seg.tangent(0.0), v = seg.tangent(seg.length());
+    if (std::abs(seg.turning()) < 0.2 || std::abs(cross(u, v)) < 1e-3) continue;
+    const Vec2 apex = a + (cross(b - a, v) / cross(u, v)) * u;
+    window->selectSegment(0, static_cast<int>(i));  // shows its triangle and apex handle
+    const QPoint from = canvas->toWidget(apex).toPoint();
+    const QPoint to = from + QPoint(3, 4);
+    QTest::mousePress(canvas, Qt::LeftButton, Qt::ControlModifier, from);
+    QMouseEvent move(QEvent::MouseMove, to, canvas->mapToGlobal(to), Qt::NoButton, Qt::LeftButton, Qt::ControlModifier);
+    QApplication::sendEvent(canvas, &move);
+    QTest::mouseRelease(canvas, Qt::LeftButton, Qt::ControlModifier, to);
+    EXPECT_EQ(window->document().strokes().size(), 1u) << "an apex drag draws no stroke";
+    if (window->document().strokes()[0].apex_overrides.count(static_cast<int>(i)) == 0) continue;  // refused, reported
+    const FitResult& after = lastFit();
+    const LaSegment& moved = after.curve.pieces[i].segment;
+    const QPointF w = canvas->toWorld(to);
+    const Vec2 target(w.x(), w.y());
+    EXPECT_LT((moved.tangent(0.0) - (target - moved.start()).normalized()).norm(), 1e-9);
+    EXPECT_LT((moved.tangent(moved.length()) - (moved.end() - target).normalized()).norm(), 1e-9);
+    EXPECT_LT(after.quality.g2_gap, 1e-6);
+    window->undoStack()->undo();
+    EXPECT_LT((lastFit().curve.pieces[i].segment.tangent(0.0) - u).norm(), 1e-12);
+    return;
+  }
+  GTEST_SKIP() << "no apex could be moved";
+}
+
 TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
   const QString png = dir.filePath("background.png");
   QImage image(200, 100, QImage::Format_RGB32);
