@@ -19,6 +19,7 @@ const QColor kCurveColor(21, 101, 192);
 const QColor kCombColor(211, 47, 47, 160);
 const QColor kStrokeInkColor(60, 60, 60);
 const QColor kTriangleColor(120, 60, 170);
+const QColor kConstructionColor(27, 94, 32);
 
 // Q1 of a segment's control triangle, where its end tangents meet; false for a straight
 // or half-turn segment, which has none.
@@ -53,17 +54,24 @@ QPointF Canvas::toWorld(const QPointF& w) const { return m_view.inverted().map(w
 QPointF Canvas::toWidget(const Vec2& p) const { return m_view.map(QPointF(p.x(), p.y())); }
 
 void Canvas::fitView() {
-  if (!m_document || m_document->strokes().empty()) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  auto include = [&](const Vec2& q) {
+    x0 = std::min(x0, q.x()), x1 = std::max(x1, q.x());
+    y0 = std::min(y0, q.y()), y1 = std::max(y1, q.y());
+  };
+  if (m_document) {
+    for (const DocumentStroke& s : m_document->strokes())
+      for (const StrokeSample& p : s.raw.samples) include(p.p);
+    for (const Construction& c : m_document->constructions()) {
+      for (const Vec2& q : c.handles) include(q);
+      for (const Vec2& q : c.result.points) include(q);
+    }
+  }
+  if (!std::isfinite(x0)) {
     m_view = QTransform();
     update();
     return;
   }
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  for (const DocumentStroke& s : m_document->strokes())
-    for (const StrokeSample& p : s.raw.samples) {
-      x0 = std::min(x0, p.p.x()), x1 = std::max(x1, p.p.x());
-      y0 = std::min(y0, p.p.y()), y1 = std::max(y1, p.p.y());
-    }
   const double w = std::max(x1 - x0, 1e-9), h = std::max(y1 - y0, 1e-9);
   const double scale = 0.85 * std::min(width() / w, height() / h);
   m_view = QTransform();
@@ -180,6 +188,8 @@ void Canvas::mousePressEvent(QMouseEvent* e) {
       }
       if (!fit->curve.closed && !pieces.empty()) consider(pieces.back().segment.end(), k, pieces.size(), false);
     }
+  } else if (e->button() == Qt::LeftButton && pickHandle(e->position())) {
+    emit handlePressed(m_drag_construction);
   } else if (e->button() == Qt::LeftButton) {
     beginStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
   } else if (e->button() == Qt::RightButton && m_document) {
@@ -210,6 +220,8 @@ void Canvas::mouseMoveEvent(QMouseEvent* e) {
     shift.translate(d.x(), d.y());
     m_view = m_view * shift;
     update();
+  } else if (m_drag_handle >= 0) {
+    emit handleDragged(m_drag_construction, m_drag_handle, toWorld(e->position()));
   } else if (m_drag_piece >= 0) {
     if (m_drag_apex) emit apexDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
     else emit jointDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
@@ -220,6 +232,12 @@ void Canvas::mouseMoveEvent(QMouseEvent* e) {
 }
 
 void Canvas::mouseReleaseEvent(QMouseEvent* e) {
+  if (m_drag_handle >= 0) {
+    const int construction = m_drag_construction, handle = m_drag_handle;
+    m_drag_construction = m_drag_handle = -1;
+    emit handleDropped(construction, handle, toWorld(e->position()));
+    return;
+  }
   if (m_drag_piece >= 0) {
     const int stroke = m_drag_stroke, piece = m_drag_piece;
     m_drag_stroke = m_drag_piece = -1;
@@ -233,6 +251,74 @@ void Canvas::mouseReleaseEvent(QMouseEvent* e) {
 }
 
 void Canvas::wheelEvent(QWheelEvent* e) { zoomAbout(e->position(), std::pow(kZoomStep, e->angleDelta().y() / 120.0)); }
+
+bool Canvas::pickHandle(const QPointF& at) {
+  if (!m_document) return false;
+  double best = 8.0;  // pixels
+  for (std::size_t k = 0; k < m_document->constructions().size(); ++k) {
+    const auto& handles = m_document->constructions()[k].handles;
+    for (std::size_t i = 0; i < handles.size(); ++i) {
+      const QPointF w = toWidget(handles[i]);
+      const double d = std::hypot(w.x() - at.x(), w.y() - at.y());
+      if (d < best) best = d, m_drag_construction = static_cast<int>(k), m_drag_handle = static_cast<int>(i);
+    }
+  }
+  return m_drag_handle >= 0;
+}
+
+void Canvas::setSelectedConstruction(int index) {
+  m_selected_construction = index;
+  update();
+}
+
+void Canvas::paintComb(QPainter& p, const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
+                       const std::vector<double>& kappa, double scale) const {
+  p.setPen(QPen(kCombColor, 1.0));
+  QPolygonF envelope;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec2 tip = points[i] - scale * kappa[i] * normals[i];
+    p.drawLine(toWidget(points[i]), toWidget(tip));
+    envelope << toWidget(tip);
+  }
+  p.drawPolyline(envelope);
+}
+
+void Canvas::paintConstruction(QPainter& p, const Construction& c, bool selected) const {
+  const ConstructionResult& r = c.result;
+  if (m_layers.comb && !r.kappa.empty()) {
+    double kmax = 0.0;
+    for (double k : r.kappa) kmax = std::max(kmax, std::abs(k));
+    if (kmax > 0) {
+      // about comb_density teeth per segment's worth of samples, like the fitted curves
+      const std::size_t every = std::max<std::size_t>(1, r.points.size() / std::max(2, 3 * m_layers.comb_density));
+      std::vector<Vec2> points, normals;
+      std::vector<double> kappa;
+      for (std::size_t i = 0; i < r.points.size(); i += every) {
+        points.push_back(r.points[i]);
+        normals.push_back(r.normals[i]);
+        kappa.push_back(r.kappa[i]);
+      }
+      paintComb(p, points, normals, kappa, m_layers.comb_scale * std::min(width(), height()) / m_view.m11() / kmax);
+    }
+  }
+  QPolygonF polygon;
+  for (const Vec2& q : c.handles) polygon << toWidget(q);
+  p.setPen(QPen(kTriangleColor, 1.0, Qt::DotLine));
+  p.setBrush(Qt::NoBrush);
+  p.drawPolyline(polygon);
+  if (!r.points.empty()) {
+    QPolygonF line;
+    for (const Vec2& q : r.points) line << toWidget(q);
+    p.setPen(QPen(selected ? QColor(255, 143, 0) : kConstructionColor, selected ? 3.0 : 2.2));
+    p.drawPolyline(line);
+  } else {
+    p.setPen(QPen(kCombColor));
+    p.drawText(polygon.boundingRect().bottomLeft() + QPointF(0, 14), QString::fromStdString(r.message));
+  }
+  p.setPen(QPen(kTriangleColor, 1.2));
+  p.setBrush(Qt::white);
+  for (const QPointF& q : polygon) p.drawEllipse(q, 4.5, 4.5);
+}
 
 bool Canvas::showsTriangle(int stroke, int piece) const {
   return m_layers.triangles || (stroke == m_selected_stroke && piece == m_selected_piece);
@@ -270,15 +356,9 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit, int stroke) const {
     }
     if (m_layers.comb && comb_world > 0) {
       const CurveSamples teeth = seg.sample(std::max(2, m_layers.comb_density));
-      p.setPen(QPen(kCombColor, 1.0));
-      QPolygonF envelope;
-      for (std::size_t i = 0; i < teeth.size(); ++i) {
-        const Vec2 n(-teeth.tangent[i].y(), teeth.tangent[i].x());
-        const Vec2 tip = teeth.point[i] - comb_world * teeth.kappa[i] * n;
-        p.drawLine(toWidget(teeth.point[i]), toWidget(tip));
-        envelope << toWidget(tip);
-      }
-      p.drawPolyline(envelope);
+      std::vector<Vec2> normals;
+      for (const Vec2& t : teeth.tangent) normals.push_back(Vec2(-t.y(), t.x()));
+      paintComb(p, teeth.point, normals, teeth.kappa, comb_world);
     }
     if (m_layers.curve) {
       const int n = std::clamp(static_cast<int>(seg.length() * m_view.m11() / 3.0), 8, 2000);
@@ -326,6 +406,9 @@ void Canvas::paintEvent(QPaintEvent*) {
       if (s.fit) paintCurve(p, *s.fit, static_cast<int>(k));
     }
   }
+  if (m_document)
+    for (std::size_t k = 0; k < m_document->constructions().size(); ++k)
+      paintConstruction(p, m_document->constructions()[k], static_cast<int>(k) == m_selected_construction);
   if (m_preview) paintCurve(p, *m_preview, -1);
   if (!m_current.samples.empty()) {  // the stroke in progress, as ink
     QPolygonF ink;

@@ -42,6 +42,8 @@ class Canvas : public QWidget {
   bool hasPreview() const { return m_preview.has_value(); }
   const Stroke& currentStroke() const { return m_current; }
   void setSelection(int stroke, int piece);
+  /// The construction whose parameters the panel shows (-1: none); drawn highlighted.
+  void setSelectedConstruction(int index);
   /// A raster image under the drawing, to trace over; world units are its pixels.
   void setBackground(const QImage& image, double opacity);
   double backgroundOpacity() const { return m_background_opacity; }
@@ -62,6 +64,10 @@ class Canvas : public QWidget {
   // ctrl+drag of a shown control triangle's apex (Q1), live
   void apexDragged(int stroke, int piece, const QPointF& world);
   void apexDropped(int stroke, int piece, const QPointF& world);
+  // drag of a construction's handle (a plain left drag near it), live and on release
+  void handlePressed(int construction);
+  void handleDragged(int construction, int handle, const QPointF& world);
+  void handleDropped(int construction, int handle, const QPointF& world);
 
  protected:
   void paintEvent(QPaintEvent*) override;
@@ -81,6 +87,10 @@ class Canvas : public QWidget {
   void paintCurve(QPainter& p, const FitResult& fit, int stroke) const;
   // The triangles layer, or the selected segment: its control triangle and apex handle.
   bool showsTriangle(int stroke, int piece) const;
+  bool pickHandle(const QPointF& at);  // a construction handle within reach: sets m_drag_*
+  void paintConstruction(QPainter& p, const Construction& c, bool selected) const;
+  void paintComb(QPainter& p, const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
+                 const std::vector<double>& kappa, double scale) const;
 
   const Document* m_document = nullptr;
   Layers m_layers;
@@ -93,6 +103,8 @@ class Canvas : public QWidget {
   std::optional<FitResult> m_preview;
   int m_drag_stroke = -1, m_drag_piece = -1;  // the joint or apex being dragged
   bool m_drag_apex = false;
+  int m_drag_construction = -1, m_drag_handle = -1;
+  int m_selected_construction = -1;
   QImage m_background;
   double m_background_opacity = 0.5;
   int m_selected_stroke = -1, m_selected_piece = -1;

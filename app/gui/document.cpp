@@ -126,7 +126,26 @@ void Document::setOptions(const FitOptions& options) {
   for (DocumentStroke& s : strokes_) fit(s);
 }
 
-void Document::clear() { strokes_.clear(); }
+void Document::clear() {
+  strokes_.clear();
+  constructions_.clear();
+}
+
+void Document::insertConstruction(std::size_t index, Construction construction) {
+  construction.solve();
+  constructions_.insert(constructions_.begin() + static_cast<long>(std::min(index, constructions_.size())),
+                        std::move(construction));
+}
+
+void Document::replaceConstruction(std::size_t index, Construction construction) {
+  if (index >= constructions_.size()) return;
+  construction.solve();
+  constructions_[index] = std::move(construction);
+}
+
+void Document::removeConstruction(std::size_t index) {
+  if (index < constructions_.size()) constructions_.erase(constructions_.begin() + static_cast<long>(index));
+}
 
 void Document::save(const QString& path) const {
   nlohmann::json strokes = nlohmann::json::array(), curves = nlohmann::json::array();
@@ -146,8 +165,10 @@ void Document::save(const QString& path) const {
                        {"joint_overrides", pointsToJson(s.joint_overrides)}, {"apex_overrides", pointsToJson(s.apex_overrides)}});
     curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
+  nlohmann::json constructions = nlohmann::json::array();
+  for (const Construction& c : constructions_) constructions.push_back(c.toJson());
   const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", optionsToJson(options_)},
-                              {"strokes", strokes}, {"curves", curves}};
+                              {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}};
   writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
 }
 
@@ -195,8 +216,13 @@ void Document::load(const QString& path) {
   } catch (const nlohmann::json::exception& e) {  // missing key, wrong type
     throw std::runtime_error(name + ": " + e.what());
   }
+  std::vector<Construction> constructions;
+  const nlohmann::json saved = doc.value("constructions", nlohmann::json::array());
+  for (std::size_t i = 0; i < saved.size(); ++i)
+    constructions.push_back(Construction::fromJson(saved[i], name + ": constructions[" + std::to_string(i) + "]"));
   options_ = options;
   strokes_ = std::move(loaded);
+  constructions_ = std::move(constructions);
   for (DocumentStroke& s : strokes_) fit(s);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/gui/construction.h"
 #include "fitting/pipeline.h"
 
 namespace la::gui {
@@ -25,6 +26,12 @@ struct DocumentStroke {
 class Document {
  public:
   const std::vector<DocumentStroke>& strokes() const { return strokes_; }
+  /// Curves built from handles and parameters (the Construct menu), after the strokes.
+  const std::vector<Construction>& constructions() const { return constructions_; }
+  /// Inserts (index <= count) or replaces (index < count) a construction, solving it.
+  void insertConstruction(std::size_t index, Construction construction);
+  void replaceConstruction(std::size_t index, Construction construction);
+  void removeConstruction(std::size_t index);
   const FitOptions& options() const { return options_; }
 
   /// Adds a stroke and fits it; returns its index.
@@ -45,7 +52,8 @@ class Document {
   void clear();
 
   /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},
-  /// "strokes": [{"points": [[x,y],...], "t": [...], "pressure": [...]}], "curves": [...]}.
+  /// "strokes": [{"points": [[x,y],...], "t": [...], "pressure": [...]}], "curves": [...],
+  /// "constructions": [{"kind", "handles", "parameters", "curve"}]}.
   /// Written atomically; reading throws std::runtime_error naming the file and problem.
   void save(const QString& path) const;
   void load(const QString& path);
@@ -57,6 +65,7 @@ class Document {
   template <class Edit, class Remember>
   std::string editStroke(std::size_t stroke, Edit&& edit, Remember&& remember);
   std::vector<DocumentStroke> strokes_;
+  std::vector<Construction> constructions_;
   FitOptions options_;
 };
 

@@ -23,6 +23,7 @@
 #include <functional>
 
 #include "app/gui/canvas.h"
+#include "app/gui/construction_panel.h"
 #include "app/gui/curvature_plot.h"
 #include "app/gui/lcg_plot.h"
 #include "app/gui/parameter_panel.h"
@@ -106,6 +107,30 @@ class EditStrokeCommand : public QUndoCommand {
   DocumentStroke m_before;
 };
 
+// Adds, removes or replaces one construction: `before` empty adds `after` at `index`,
+// `after` empty removes it.
+class ConstructionCommand : public QUndoCommand {
+ public:
+  ConstructionCommand(MainWindow* w, const QString& text, std::size_t index, std::optional<Construction> before,
+                      std::optional<Construction> after)
+      : QUndoCommand(text), m_window(w), m_index(index), m_before(std::move(before)), m_after(std::move(after)) {}
+  void redo() override { apply(m_before, m_after); }
+  void undo() override { apply(m_after, m_before); }
+
+ private:
+  void apply(const std::optional<Construction>& from, const std::optional<Construction>& to) {
+    Document& d = m_window->document();
+    if (from && to) d.replaceConstruction(m_index, *to);
+    else if (to) d.insertConstruction(m_index, *to);
+    else d.removeConstruction(m_index);
+    m_window->documentChanged();
+    m_window->selectConstruction(to ? static_cast<int>(m_index) : -1);
+  }
+  MainWindow* m_window;
+  std::size_t m_index;
+  std::optional<Construction> m_before, m_after;
+};
+
 }  // namespace
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
@@ -133,6 +158,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   param_dock->setWidget(m_parameters);
   addDockWidget(Qt::RightDockWidgetArea, param_dock);
 
+  m_construction_panel = new ConstructionPanel;
+  auto* construction_dock = new QDockWidget("Construction", this);
+  construction_dock->setObjectName("construction");
+  construction_dock->setWidget(m_construction_panel);
+  addDockWidget(Qt::RightDockWidgetArea, construction_dock);
+  tabifyDockWidget(param_dock, construction_dock);
+  param_dock->raise();
+
   m_status = new QLabel("draw with the pen or the mouse; shift+drag or middle button pans, wheel zooms");
   statusBar()->addWidget(m_status, 1);
 
@@ -142,6 +175,40 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
     m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
   });
+  // Construction handles: a live solve while dragging, one undoable edit on release.
+  connect(m_canvas, &Canvas::handlePressed, this, [this](int index) {
+    selectConstruction(index);
+    m_handle_drag_before = m_document.constructions()[static_cast<std::size_t>(index)];
+  });
+  connect(m_canvas, &Canvas::handleDragged, this, [this](int index, int handle, const QPointF& w) {
+    Construction c = m_document.constructions()[static_cast<std::size_t>(index)];
+    c.handles[static_cast<std::size_t>(handle)] = Vec2(w.x(), w.y());
+    m_document.replaceConstruction(static_cast<std::size_t>(index), c);
+    m_canvas->update();
+    m_construction_panel->setConstruction(&m_document.constructions()[static_cast<std::size_t>(index)]);
+  });
+  connect(m_canvas, &Canvas::handleDropped, this, [this](int index, int handle, const QPointF& w) {
+    if (!m_handle_drag_before) return;
+    Construction after = *m_handle_drag_before;
+    after.handles[static_cast<std::size_t>(handle)] = Vec2(w.x(), w.y());
+    const Construction before = *m_handle_drag_before;
+    m_handle_drag_before.reset();
+    editConstruction(index, before, after, "move handle");
+  });
+  connect(m_construction_panel, &ConstructionPanel::parametersChanged, this,
+          [this](const std::map<std::string, double>& parameters) {
+            if (m_selected_construction < 0) return;
+            const Construction& before = m_document.constructions()[static_cast<std::size_t>(m_selected_construction)];
+            Construction after = before;
+            after.parameters = parameters;
+            editConstruction(m_selected_construction, before, after, "change construction parameters");
+          });
+  connect(m_construction_panel, &ConstructionPanel::deleteRequested, this, [this] {
+    if (m_selected_construction < 0) return;
+    const std::size_t i = static_cast<std::size_t>(m_selected_construction);
+    m_undo->push(new ConstructionCommand(this, "delete construction", i, m_document.constructions()[i], std::nullopt));
+  });
+
   // Ctrl+drag of a joint or a control-triangle apex: a live preview while dragging, one
   // undoable edit on release.
   auto preview_edit = [this](int stroke, const std::function<std::optional<FitResult>(const FitResult&)>& edit) {
@@ -239,6 +306,30 @@ void MainWindow::selectSegment(int stroke, int piece) {
   }
 }
 
+void MainWindow::addConstruction(ConstructionKind kind) {
+  const QPointF a = m_canvas->toWorld(QPointF(0, 0)), b = m_canvas->toWorld(QPointF(m_canvas->width(), m_canvas->height()));
+  const Vec2 center(0.5 * (a.x() + b.x()), 0.5 * (a.y() + b.y()));
+  const double size = 0.3 * std::min(std::abs(b.x() - a.x()), std::abs(b.y() - a.y()));
+  m_undo->push(new ConstructionCommand(this, QString("add ") + displayName(kind), m_document.constructions().size(),
+                                       std::nullopt, Construction::create(kind, center, size)));
+}
+
+void MainWindow::selectConstruction(int index) {
+  if (index >= static_cast<int>(m_document.constructions().size())) index = -1;
+  m_selected_construction = index;
+  m_canvas->setSelectedConstruction(index);
+  m_construction_panel->setConstruction(index >= 0 ? &m_document.constructions()[static_cast<std::size_t>(index)] : nullptr);
+  if (index >= 0) {
+    const ConstructionResult& r = m_document.constructions()[static_cast<std::size_t>(index)].result;
+    m_status->setText(QString("%1: %2").arg(displayName(m_document.constructions()[static_cast<std::size_t>(index)].kind),
+                                           QString::fromStdString((r.ok ? "" : "no curve: ") + r.message)));
+  }
+}
+
+void MainWindow::editConstruction(int index, const Construction& before, const Construction& after, const QString& what) {
+  m_undo->push(new ConstructionCommand(this, what, static_cast<std::size_t>(index), before, after));
+}
+
 void MainWindow::rememberRecent(const QString& path) {
   QSettings settings;
   QStringList files = settings.value("recent").toStringList();
@@ -307,6 +398,7 @@ void MainWindow::documentChanged() {
     if (s.fit) last = &*s.fit;
   m_plot->setFit(last);
   selectSegment(-1, -1);
+  selectConstruction(m_selected_construction);
   if (!last) {
     m_status->setText(m_document.strokes().empty() ? "no strokes" : "the last stroke could not be fitted");
     return;
@@ -378,14 +470,15 @@ bool MainWindow::importPoints(const QString& path) {
 }
 
 bool MainWindow::exportFile(const QString& path, bool selected_only) {
-  if (selected_only && m_selected_stroke < 0) {
-    showError("select a curve first (right-click it)");
+  const bool only_construction = selected_only && m_selected_stroke < 0 && m_selected_construction >= 0;
+  if (selected_only && m_selected_stroke < 0 && !only_construction) {
+    showError("select a curve first (right-click it, or click a construction's handle)");
     return false;
   }
   std::vector<Curve> curves;
   std::vector<std::vector<Vec2>> points;
   std::vector<CurveOrError> entries;
-  for (std::size_t k = 0; k < m_document.strokes().size(); ++k) {
+  for (std::size_t k = 0; k < m_document.strokes().size() && !only_construction; ++k) {
     if (selected_only && static_cast<int>(k) != m_selected_stroke) continue;
     const DocumentStroke& s = m_document.strokes()[k];
     if (!s.fit) {
@@ -395,6 +488,17 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
     curves.push_back(s.fit->curve);
     points.push_back(s.fit->cleaned.points);
     entries.push_back({s.fit->curve, {}});
+  }
+  for (std::size_t k = 0; k < m_document.constructions().size(); ++k) {
+    if (selected_only && !(only_construction && static_cast<int>(k) == m_selected_construction)) continue;
+    const Construction& c = m_document.constructions()[k];
+    if (!c.result.curve) {
+      entries.push_back({std::nullopt, c.result.message});
+      continue;
+    }
+    curves.push_back(*c.result.curve);
+    points.push_back(c.handles);
+    entries.push_back({*c.result.curve, {}});
   }
   const QString ext = QFileInfo(path).suffix().toLower();
   try {
@@ -477,6 +581,11 @@ void MainWindow::buildMenus() {
   redo->setShortcut(QKeySequence::Redo);
   edit->addAction(undo);
   edit->addAction(redo);
+
+  QMenu* construct = menuBar()->addMenu("&Construct");
+  for (ConstructionKind kind : {ConstructionKind::kSegment, ConstructionKind::kCompound, ConstructionKind::kHermite,
+                                ConstructionKind::kAlp})
+    construct->addAction(displayName(kind), this, [this, kind] { addConstruction(kind); });
 
   QMenu* view = menuBar()->addMenu("&View");
   auto toggle = [&](const char* name, bool Layers::*flag) {

@@ -17,6 +17,7 @@ class QUndoStack;
 namespace la::gui {
 
 class Canvas;
+class ConstructionPanel;
 class CurvaturePlot;
 class LcgPlot;
 class ParameterPanel;
@@ -52,6 +53,12 @@ class MainWindow : public QMainWindow {
   /// Called after any change of the document: repaint, plot, status.
   void documentChanged();
   void selectSegment(int stroke, int piece);  // -1, -1: none
+  /// Adds a construction of that kind in the middle of the view, undoably, and selects it.
+  void addConstruction(ConstructionKind kind);
+  void selectConstruction(int index);         // -1: none
+  int selectedConstruction() const { return m_selected_construction; }
+  /// Replaces construction `index` by `after` as one undoable step (`before` is what undo restores).
+  void editConstruction(int index, const Construction& before, const Construction& after, const QString& what);
   void showMessage(const QString& what);      // in the status bar
 
  private:
@@ -71,6 +78,9 @@ class MainWindow : public QMainWindow {
   double m_preview_ms = 0.0;   // time of the last live fit
   qint64 m_preview_at = 0;     // when it ran (ms since epoch)
   ParameterPanel* m_parameters = nullptr;
+  ConstructionPanel* m_construction_panel = nullptr;
+  int m_selected_construction = -1;
+  std::optional<Construction> m_handle_drag_before;  // the construction as it was when a handle drag began
   QUndoStack* m_undo = nullptr;
   QLabel* m_status = nullptr;
   QTimer* m_autosave = nullptr;

@@ -275,6 +275,49 @@ TEST_F(MainWindowTest, CtrlDragTheApexKeepsG2AndUndoes) {
   GTEST_SKIP() << "no apex could be moved";
 }
 
+// Construct > LA segment: a curve from three handles. Dragging a handle re-solves it
+// live and the curve ends on the handle; a parameter change, undo, save and reopen.
+TEST_F(MainWindowTest, SegmentConstructionFollowsItsHandles) {
+  window->addConstruction(ConstructionKind::kSegment);
+  ASSERT_EQ(window->document().constructions().size(), 1u);
+  EXPECT_EQ(window->selectedConstruction(), 0);
+  const Construction& c = window->document().constructions()[0];
+  ASSERT_TRUE(c.result.ok) << c.result.message;
+  Canvas* canvas = window->canvas();
+  const QPoint from = canvas->toWidget(c.handles[2]).toPoint();
+  const QPoint to = from + QPoint(-10, 15);
+  QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, from);
+  QMouseEvent move(QEvent::MouseMove, to, canvas->mapToGlobal(to), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(canvas, &move);
+  QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, to);
+  EXPECT_TRUE(window->document().strokes().empty()) << "a handle drag draws no stroke";
+  const Construction& moved = window->document().constructions()[0];
+  const QPointF w = canvas->toWorld(to);
+  ASSERT_TRUE(moved.result.ok) << moved.result.message;
+  EXPECT_LT((moved.result.curve->pieces[0].segment.end() - Vec2(w.x(), w.y())).norm(), 1e-9 * (moved.handles[2] - moved.handles[0]).norm());
+
+  Construction steeper = moved;
+  steeper.parameters["alpha"] = 1.0;  // a logarithmic spiral through the same triangle
+  window->editConstruction(0, moved, steeper, "alpha");
+  EXPECT_DOUBLE_EQ(window->document().constructions()[0].result.curve->pieces[0].segment.alpha(), 1.0);
+  window->undoStack()->undo();
+  EXPECT_DOUBLE_EQ(window->document().constructions()[0].result.curve->pieces[0].segment.alpha(), -1.0);
+  window->undoStack()->redo();
+
+  const QString path = dir.filePath("constructed.lafair.json");
+  ASSERT_TRUE(window->saveFile(path));
+  MainWindow other;
+  ASSERT_TRUE(other.openFile(path));
+  ASSERT_EQ(other.document().constructions().size(), 1u);
+  EXPECT_EQ(other.document().constructions()[0].handles, window->document().constructions()[0].handles);
+  EXPECT_DOUBLE_EQ(other.document().constructions()[0].result.curve->pieces[0].segment.alpha(), 1.0);
+  EXPECT_TRUE(window->exportFile(dir.filePath("constructed.svg")));
+  window->undoStack()->undo();
+  window->undoStack()->undo();
+  window->undoStack()->undo();
+  EXPECT_TRUE(window->document().constructions().empty());
+}
+
 TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
   const QString png = dir.filePath("background.png");
   QImage image(200, 100, QImage::Format_RGB32);

@@ -1,0 +1,165 @@
+#include "app/gui/construction.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/curve_json.h"
+#include "core/three_point_segment.h"
+
+namespace la::gui {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kSamplesPerSegment = 160;
+
+nlohmann::json solveToJson(const SolveReport& report) {
+  return {{"status", toString(report.status)}, {"iterations", report.iterations}, {"residual", report.residual},
+          {"message", report.message}};
+}
+
+nlohmann::json pointsToJson(const std::vector<Vec2>& points) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const Vec2& q : points) j.push_back({q.x(), q.y()});
+  return j;
+}
+
+// The drawing and export parts of a result made of LA segments.
+void fillFromCurve(ConstructionResult& r, const Curve& curve, const SolveReport& report, nlohmann::json solve) {
+  r.ok = true;
+  r.message = report.message;
+  r.curve = curve;
+  for (const CurvePiece& piece : curve.pieces) {
+    const CurveSamples s = piece.segment.sample(kSamplesPerSegment);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      r.points.push_back(s.point[i]);
+      r.normals.push_back(Vec2(-s.tangent[i].y(), s.tangent[i].x()));
+      r.kappa.push_back(s.kappa[i]);
+    }
+  }
+  r.json = curveToJson(curve);
+  solve.update(solveToJson(report));
+  r.json["solve"] = std::move(solve);
+}
+
+ConstructionResult failed(const SolveReport& report) {
+  ConstructionResult r;
+  r.message = std::string(toString(report.status)) + ": " + report.message;
+  r.json = {{"error", r.message}};
+  return r;
+}
+
+ConstructionResult solveSegment(const Construction& c) {
+  const SegmentSolve s = solveThreePointSegment(c.parameter("alpha"), c.handles[0], c.handles[1], c.handles[2]);
+  if (!s.report.usable()) return failed(s.report);
+  ConstructionResult r;
+  Curve curve;
+  curve.pieces.push_back({*s.segment, false});
+  fillFromCurve(r, curve, s.report, {{"construction", "segment"}, {"control_points", pointsToJson(c.handles)}});
+  return r;
+}
+
+}  // namespace
+
+const char* toString(ConstructionKind kind) {
+  switch (kind) {
+    case ConstructionKind::kSegment: return "segment";
+    case ConstructionKind::kCompound: return "compound";
+    case ConstructionKind::kHermite: return "hermite";
+    case ConstructionKind::kAlp: return "alp";
+  }
+  return "unknown";
+}
+
+std::optional<ConstructionKind> constructionKindFromString(const std::string& name) {
+  for (ConstructionKind k : {ConstructionKind::kSegment, ConstructionKind::kCompound, ConstructionKind::kHermite,
+                             ConstructionKind::kAlp})
+    if (name == toString(k)) return k;
+  return std::nullopt;
+}
+
+const char* displayName(ConstructionKind kind) {
+  switch (kind) {
+    case ConstructionKind::kSegment: return "LA segment (3 control points)";
+    case ConstructionKind::kCompound: return "Compound-rhythm LA curve (4 control points)";
+    case ConstructionKind::kHermite: return "Triple-LA G2 Hermite curve";
+    case ConstructionKind::kAlp: return "ALP curve (explicit Bezier curvature)";
+  }
+  return "unknown";
+}
+
+const std::vector<ParameterSpec>& parameterSpecs(ConstructionKind kind) {
+  static const std::vector<ParameterSpec> segment = {
+      {"alpha", "alpha", "slope of the LCG: -1 clothoid, 1 log spiral, 2 involute", -3.0, 3.0, -1.0}};
+  switch (kind) {
+    case ConstructionKind::kSegment: return segment;
+    default: break;
+  }
+  static const std::vector<ParameterSpec> none;
+  return none;
+}
+
+double Construction::parameter(const std::string& key) const {
+  if (auto it = parameters.find(key); it != parameters.end()) return it->second;
+  for (const ParameterSpec& spec : parameterSpecs(kind))
+    if (spec.key == key) return spec.optional ? kNaN : spec.initial;
+  return kNaN;
+}
+
+Construction Construction::create(ConstructionKind kind, const Vec2& center, double size) {
+  Construction c;
+  c.kind = kind;
+  for (const ParameterSpec& spec : parameterSpecs(kind)) c.parameters[spec.key] = spec.optional ? kNaN : spec.initial;
+  auto at = [&](double x, double y) { return Vec2(center + size * Vec2(x, y)); };
+  switch (kind) {
+    case ConstructionKind::kSegment: c.handles = {at(-1, 0.6), at(0.1, 0.6), at(1, -0.6)}; break;
+    case ConstructionKind::kCompound: c.handles = {at(-1, 0.6), at(-0.2, 0.75), at(0.6, 0.3), at(1, -0.6)}; break;
+    case ConstructionKind::kHermite:
+    case ConstructionKind::kAlp: c.handles = {at(-1, 0), at(-0.5, 0.5), at(0.5, 0.5), at(1, 0)}; break;
+  }
+  c.solve();
+  return c;
+}
+
+void Construction::solve() {
+  for (const Vec2& q : handles)
+    if (!allFinite(q)) {
+      result = failed({SolveStatus::kBadInput, 0, kNaN, "a handle is not a finite point"});
+      return;
+    }
+  switch (kind) {
+    case ConstructionKind::kSegment: result = solveSegment(*this); return;
+    default: break;
+  }
+  result = failed({SolveStatus::kBadInput, 0, kNaN, "unknown construction"});
+}
+
+nlohmann::json Construction::toJson() const {
+  nlohmann::json params = nlohmann::json::object();
+  for (const auto& [key, value] : parameters) params[key] = std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
+  return {{"kind", toString(kind)}, {"handles", pointsToJson(handles)}, {"parameters", params}, {"curve", result.json}};
+}
+
+Construction Construction::fromJson(const nlohmann::json& json, const std::string& where) {
+  Construction c;
+  try {
+    const std::string name = json.at("kind").get<std::string>();
+    const auto kind = constructionKindFromString(name);
+    if (!kind) throw std::runtime_error(where + ".kind: unknown construction '" + name + "'");
+    c = create(*kind, Vec2(0, 0), 1.0);
+    const auto& handles = json.at("handles");
+    if (!handles.is_array() || handles.size() != c.handles.size())
+      throw std::runtime_error(where + ".handles: expected " + std::to_string(c.handles.size()) + " points for a " + name);
+    for (std::size_t i = 0; i < handles.size(); ++i)
+      c.handles[i] = Vec2(handles[i].at(0).get<double>(), handles[i].at(1).get<double>());
+    const nlohmann::json parameters = json.value("parameters", nlohmann::json::object());
+    for (const auto& [key, value] : parameters.items())
+      if (c.parameters.count(key)) c.parameters[key] = value.is_null() ? kNaN : value.get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(where + ": " + e.what());
+  }
+  c.solve();
+  return c;
+}
+
+}  // namespace la::gui
