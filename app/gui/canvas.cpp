@@ -93,6 +93,34 @@ void Canvas::setBackground(const QImage& image, double opacity) {
 }
 
 bool Canvas::event(QEvent* e) {
+  switch (e->type()) {
+    case QEvent::TouchBegin:
+    case QEvent::TouchUpdate:
+    case QEvent::TouchEnd:
+    case QEvent::TouchCancel: {
+      // One finger draws (with its pressure where the screen reports one); a second
+      // finger turns the touch into a pinch, so the stroke begun by the first is dropped.
+      auto* t = static_cast<QTouchEvent*>(e);
+      const double now = static_cast<double>(t->timestamp());
+      if (t->points().size() != 1 || e->type() == QEvent::TouchCancel) {
+        if (m_drawing) {
+          m_drawing = false;
+          m_current = Stroke();
+          m_preview.reset();
+          update();
+        }
+        return QWidget::event(e);
+      }
+      const QEventPoint& point = t->points().front();
+      const double pressure = point.pressure() > 0.0 && point.pressure() < 1.0 ? point.pressure() : NAN;
+      if (e->type() == QEvent::TouchBegin) beginStroke(point.position(), pressure, now);
+      else if (m_drawing) extendStroke(point.position(), pressure, now);
+      if (e->type() == QEvent::TouchEnd && m_drawing) endStroke();
+      e->accept();
+      return true;
+    }
+    default: break;
+  }
   if (e->type() == QEvent::Gesture) {
     auto* g = static_cast<QGestureEvent*>(e);
     if (auto* pinch = static_cast<QPinchGesture*>(g->gesture(Qt::PinchGesture))) {

@@ -78,7 +78,7 @@ class Canvas : public QWidget {
   void wheelEvent(QWheelEvent* event) override;
 
  private:
-  bool event(QEvent* event) override;  // pinch gestures
+  bool event(QEvent* event) override;  // touch drawing and pinch gestures
   void beginStroke(const QPointF& pos, double pressure, double time_ms);
   void extendStroke(const QPointF& pos, double pressure, double time_ms, double tilt_x = NAN, double tilt_y = NAN);
   void zoomAbout(const QPointF& center, double factor);

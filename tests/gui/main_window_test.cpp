@@ -318,6 +318,22 @@ TEST_F(MainWindowTest, SegmentConstructionFollowsItsHandles) {
   EXPECT_TRUE(window->document().constructions().empty());
 }
 
+// A finger on a touch screen draws like the mouse: the stroke is fitted on release.
+TEST_F(MainWindowTest, TouchStrokeIsFitted) {
+  QPointingDevice* screen = QTest::createTouchDevice(QInputDevice::DeviceType::TouchScreen);
+  Canvas* canvas = window->canvas();
+  const std::vector<QPoint> pts = wave();
+  QTest::touchEvent(canvas, screen).press(0, pts.front());
+  for (std::size_t i = 1; i < pts.size(); ++i) QTest::touchEvent(canvas, screen).move(0, pts[i]);
+  QTest::touchEvent(canvas, screen).release(0, pts.back());
+  ASSERT_EQ(window->document().strokes().size(), 1u);
+  EXPECT_GE(window->document().strokes()[0].raw.samples.size(), pts.size() - 2);
+  const FitResult& r = lastFit();
+  EXPECT_GE(r.curve.pieces.size(), 1u);
+  EXPECT_LT(r.quality.g2_gap, 1e-6);
+  EXPECT_LE(r.quality.max_dev, r.tolerance * (1 + 1e-9));
+}
+
 TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
   const QString png = dir.filePath("background.png");
   QImage image(200, 100, QImage::Format_RGB32);
