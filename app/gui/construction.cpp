@@ -89,14 +89,37 @@ const char* displayName(ConstructionKind kind) {
 }
 
 const std::vector<ParameterSpec>& parameterSpecs(ConstructionKind kind) {
+  using Type = ParameterSpec::Type;
+  static const ParameterSpec kappa_start{"kappa_start", "start curvature", "curvature at P0 times the chord |P1 - P0|; left turn positive",
+                                         -10.0, 10.0, 1.0};
+  static const ParameterSpec kappa_end{"kappa_end", "end curvature", "curvature at P1 times the chord |P1 - P0|", -10.0, 10.0, 2.0};
   static const std::vector<ParameterSpec> segment = {
       {"alpha", "alpha", "slope of the LCG: -1 clothoid, 1 log spiral, 2 involute", -3.0, 3.0, -1.0}};
+  static const std::vector<ParameterSpec> compound = {
+      {"alpha0", "alpha, first piece", "LCG slope of the piece from Q0 to the joint", -3.0, 3.0, 0.5},
+      {"alpha1", "alpha, second piece", "LCG slope of the piece from the joint to Q3", -3.0, 3.0, -0.5},
+      {"joint_angle", "joint tangent (deg)", "tangent direction at the joint; auto: from mid(Q0,Q1) to mid(Q2,Q3)", -180.0,
+       180.0, 0.0, 1, true}};
+  static const std::vector<ParameterSpec> hermite = {
+      {"alpha", "alpha", "LCG slope of all three pieces (-1: a triple clothoid)", -3.0, 3.0, -1.0}, kappa_start, kappa_end};
+  static const std::vector<ParameterSpec> alp = {
+      {"degree", "degree n", "degree of the Bezier curvature function (G2 needs n >= 3)", 1.0, 9.0, 3.0, 0},
+      {"g2", "G2 (end curvatures)", "meet the end curvatures too; off: G1, end tangents only", 0.0, 1.0, 0.0, 0, false,
+       Type::kToggle},
+      kappa_start, kappa_end,
+      {"p", "p", "shape of the free control curvatures (seed 000 eq. 12): 0 linear, within [-1, 1] monotone", -1.0, 1.0,
+       0.0},
+      {"rational", "rational", "rational curvature function: weights from w_e and p_w", 0.0, 1.0, 0.0, 0, false,
+       Type::kToggle},
+      {"w_e", "w_e", "weight of the last control curvature (the first is 1)", 0.1, 5.0, 1.0},
+      {"p_w", "p_w", "shape of the free weights, as p for the curvatures", -2.0, 2.0, 0.0}};
   switch (kind) {
     case ConstructionKind::kSegment: return segment;
-    default: break;
+    case ConstructionKind::kCompound: return compound;
+    case ConstructionKind::kHermite: return hermite;
+    case ConstructionKind::kAlp: return alp;
   }
-  static const std::vector<ParameterSpec> none;
-  return none;
+  return segment;
 }
 
 double Construction::parameter(const std::string& key) const {

@@ -29,12 +29,15 @@ const char* toString(ConstructionKind kind);            // "segment", "compound"
 std::optional<ConstructionKind> constructionKindFromString(const std::string& name);
 const char* displayName(ConstructionKind kind);         // for menus and the panel
 
-/// A number the user sets with a slider. `optional` ones may be unset (NaN): "auto".
+/// A number the user sets with a slider (or a check box for a toggle, 0 or 1).
+/// `optional` ones may be unset (NaN): "auto".
 struct ParameterSpec {
+  enum class Type { kNumber, kToggle };
   std::string key, label, tooltip;
   double min, max, initial;
-  int decimals = 2;
+  int decimals = 2;  // 0 for whole numbers
   bool optional = false;
+  Type type = Type::kNumber;
 };
 const std::vector<ParameterSpec>& parameterSpecs(ConstructionKind kind);
 

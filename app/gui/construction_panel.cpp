@@ -58,6 +58,14 @@ void ConstructionPanel::setConstruction(const Construction* c) {
         auto* line = new QWidget;
         auto* h = new QHBoxLayout(line);
         h->setContentsMargins(0, 0, 0, 0);
+        if (spec.type == ParameterSpec::Type::kToggle) {
+          row.toggle = new QCheckBox;
+          row.toggle->setToolTip(QString::fromStdString(spec.tooltip));
+          connect(row.toggle, &QCheckBox::toggled, this, [this] { emitChanged(); });
+          m_rows->addRow(QString::fromStdString(spec.label), row.toggle);
+          m_params.push_back(row);
+          continue;
+        }
         row.box = new QDoubleSpinBox;
         row.box->setRange(spec.min, spec.max);
         row.box->setDecimals(spec.decimals);
@@ -98,6 +106,10 @@ void ConstructionPanel::setConstruction(const Construction* c) {
                      : "Construct > … adds a curve built from handles; click a handle to select its curve.");
   for (Row& row : m_params) {
     const double v = c->parameter(row.spec.key);
+    if (row.toggle) {
+      row.toggle->setChecked(v != 0.0);
+      continue;
+    }
     const bool automatic = std::isnan(v);
     if (row.automatic) row.automatic->setChecked(automatic);
     row.box->setEnabled(!automatic);
@@ -116,7 +128,7 @@ void ConstructionPanel::setConstruction(const Construction* c) {
 std::map<std::string, double> ConstructionPanel::values() const {
   std::map<std::string, double> out;
   for (const Row& row : m_params)
-    out[row.spec.key] = row.automatic && row.automatic->isChecked() ? std::numeric_limits<double>::quiet_NaN() : row.box->value();
+    out[row.spec.key] = row.toggle ? (row.toggle->isChecked() ? 1.0 : 0.0) : row.automatic && row.automatic->isChecked() ? std::numeric_limits<double>::quiet_NaN() : row.box->value();
   return out;
 }
 

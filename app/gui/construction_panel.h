@@ -36,6 +36,7 @@ class ConstructionPanel : public QWidget {
     QDoubleSpinBox* box = nullptr;
     QSlider* slider = nullptr;
     QCheckBox* automatic = nullptr;  // optional parameters only
+    QCheckBox* toggle = nullptr;     // toggles instead of box and slider
   };
   std::map<std::string, double> values() const;
   void emitChanged();
