@@ -24,19 +24,28 @@ nlohmann::json pointsToJson(const std::vector<Vec2>& points) {
   return j;
 }
 
+void addSamples(ConstructionResult& r, const CurveSamples& samples) {
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    r.points.push_back(samples.point[i]);
+    r.normals.push_back(Vec2(-samples.tangent[i].y(), samples.tangent[i].x()));
+    r.kappa.push_back(samples.kappa[i]);
+    r.s.push_back(samples.s[i]);
+  }
+}
+
 // The drawing and export parts of a result made of LA segments.
 void fillFromCurve(ConstructionResult& r, const Curve& curve, const SolveReport& report, nlohmann::json solve) {
   r.ok = true;
   r.message = report.message;
   r.curve = curve;
+  CurveSamples samples;
+  double s0 = 0.0;
   for (const CurvePiece& piece : curve.pieces) {
-    const CurveSamples s = piece.segment.sample(kSamplesPerSegment);
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      r.points.push_back(s.point[i]);
-      r.normals.push_back(Vec2(-s.tangent[i].y(), s.tangent[i].x()));
-      r.kappa.push_back(s.kappa[i]);
-    }
+    r.joints.push_back(s0);
+    piece.segment.sample(kSamplesPerSegment, samples, s0);
+    s0 += piece.segment.length();
   }
+  addSamples(r, samples);
   r.json = curveToJson(curve);
   solve.update(solveToJson(report));
   r.json["solve"] = std::move(solve);

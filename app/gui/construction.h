@@ -48,6 +48,8 @@ struct ConstructionResult {
   std::vector<Vec2> points;       // dense points along the curve, for drawing
   std::vector<Vec2> normals;      // unit left normals at those points
   std::vector<double> kappa;      // signed curvature there (comb, plots)
+  std::vector<double> s;          // arc length there
+  std::vector<double> joints;     // arc length of each piece's start
   nlohmann::json json;            // the export entry: shared format + "solve"
 };
 

@@ -57,6 +57,14 @@ void CurvaturePlot::setFit(const FitResult* fit) {
   update();
 }
 
+void CurvaturePlot::setCurve(const std::vector<double>& s, const std::vector<double>& kappa,
+                             const std::vector<double>& joints) {
+  m_before = {};
+  m_after = {s, kappa};
+  m_joints = joints;
+  update();
+}
+
 void CurvaturePlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
   const QRectF area(56, 14, width() - 70, height() - 48);
@@ -108,10 +116,14 @@ void CurvaturePlot::paintEvent(QPaintEvent*) {
   };
   draw(m_before, QPen(QColor(150, 150, 150), 1.2));
   draw(m_after, QPen(QColor(21, 101, 192), 2.0));
+  p.setPen(QColor(21, 101, 192));
+  if (m_before.s.empty()) {
+    p.drawText(QPointF(area.right() - 170, area.top() + 14), "constructed curve");
+    return;
+  }
+  p.drawText(QPointF(area.right() - 170, area.top() + 28), "after (LA curve, G2)");
   p.setPen(QColor(150, 150, 150));
   p.drawText(QPointF(area.right() - 170, area.top() + 14), "before (smoothed stroke)");
-  p.setPen(QColor(21, 101, 192));
-  p.drawText(QPointF(area.right() - 170, area.top() + 28), "after (LA curve, G2)");
 }
 
 }  // namespace la::gui

@@ -14,6 +14,8 @@ class CurvaturePlot : public QWidget {
  public:
   explicit CurvaturePlot(QWidget* parent = nullptr);
   void setFit(const FitResult* fit);  // nullptr: empty plot
+  /// A curve with no "before" (a construction): curvature at arc lengths, joints marked.
+  void setCurve(const std::vector<double>& s, const std::vector<double>& kappa, const std::vector<double>& joints);
   QSize sizeHint() const override { return {420, 220}; }
 
  protected:

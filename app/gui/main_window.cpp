@@ -185,7 +185,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     c.handles[static_cast<std::size_t>(handle)] = Vec2(w.x(), w.y());
     m_document.replaceConstruction(static_cast<std::size_t>(index), c);
     m_canvas->update();
-    m_construction_panel->setConstruction(&m_document.constructions()[static_cast<std::size_t>(index)]);
+    selectConstruction(index);
   });
   connect(m_canvas, &Canvas::handleDropped, this, [this](int index, int handle, const QPointF& w) {
     if (!m_handle_drag_before) return;
@@ -312,6 +312,7 @@ void MainWindow::addConstruction(ConstructionKind kind) {
   const double size = 0.3 * std::min(std::abs(b.x() - a.x()), std::abs(b.y() - a.y()));
   m_undo->push(new ConstructionCommand(this, QString("add ") + displayName(kind), m_document.constructions().size(),
                                        std::nullopt, Construction::create(kind, center, size)));
+  if (auto* dock = findChild<QDockWidget*>("construction")) dock->raise();
 }
 
 void MainWindow::selectConstruction(int index) {
@@ -321,6 +322,7 @@ void MainWindow::selectConstruction(int index) {
   m_construction_panel->setConstruction(index >= 0 ? &m_document.constructions()[static_cast<std::size_t>(index)] : nullptr);
   if (index >= 0) {
     const ConstructionResult& r = m_document.constructions()[static_cast<std::size_t>(index)].result;
+    m_plot->setCurve(r.s, r.kappa, r.joints);
     m_status->setText(QString("%1: %2").arg(displayName(m_document.constructions()[static_cast<std::size_t>(index)].kind),
                                            QString::fromStdString((r.ok ? "" : "no curve: ") + r.message)));
   }
