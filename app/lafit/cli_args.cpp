@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
 
 namespace la::cli {
 
@@ -59,6 +60,27 @@ int Args::integer(const std::string& name, int fallback) const {
   if (x != std::floor(x) || std::abs(x) > 1e9)
     throw UsageError("option " + name + " needs a whole number, got '" + get(name, "") + "'");
   return static_cast<int>(x);
+}
+
+std::vector<double> parseNumbers(const std::string& text, std::size_t count) {
+  std::vector<double> values;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+      throw UsageError("expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'");
+    values.push_back(v);
+  }
+  if (values.size() != count || (!text.empty() && text.back() == ','))
+    throw UsageError("expected " + std::to_string(count) + " comma-separated numbers, got '" + text + "'");
+  return values;
+}
+
+Vec2 parsePoint(const std::string& text) {
+  const std::vector<double> xy = parseNumbers(text, 2);
+  return {xy[0], xy[1]};
 }
 
 }  // namespace la::cli

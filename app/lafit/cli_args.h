@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry.h"
+
 namespace la::cli {
 
 struct UsageError : std::runtime_error {
@@ -31,5 +33,11 @@ class Args {
   std::map<std::string, std::string> values_;
   std::vector<std::string> positional_;
 };
+
+/// A point written X,Y (a command-line positional); UsageError otherwise.
+Vec2 parsePoint(const std::string& text);
+
+/// Comma-separated numbers, exactly `count` of them (e.g. X,Y,THETA,KAPPA); UsageError otherwise.
+std::vector<double> parseNumbers(const std::string& text, std::size_t count);
 
 }  // namespace la::cli

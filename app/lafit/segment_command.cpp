@@ -2,7 +2,6 @@
 // or the inflection-end construction that solves for alpha).
 
 #include <iostream>
-#include <sstream>
 
 #include "app/lafit/cli_args.h"
 #include "app/lafit/commands.h"
@@ -27,15 +26,6 @@ the intersection of the end tangents, Q2 the end (Yoshida & Saito's construction
 
 Exit status: 0 solved, 1 infeasible or bad input (the reachable range is printed), 2 usage.
 )";
-
-Vec2 parsePoint(const std::string& text) {
-  std::istringstream in(text);
-  double x, y;
-  char comma;
-  if (!(in >> x >> comma >> y) || comma != ',' || !in.eof())
-    throw UsageError("expected a point X,Y, got '" + text + "'");
-  return {x, y};
-}
 
 }  // namespace
 
