@@ -235,7 +235,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     m_undo->push(new EditStrokeCommand(this, "move control point", static_cast<std::size_t>(stroke), piece,
                                        [=](Document& d) { return d.moveApex(static_cast<std::size_t>(stroke), piece, to); }));
   });
+  connect(m_parameters, &ParameterPanel::segmentAlphaPreviewed, this, [=, this](double a) {
+    if (m_selected_stroke < 0 || m_selected_piece < 0) return;
+    preview_edit(m_selected_stroke, [&](const FitResult& f) {
+      return withSegmentAlpha(f, static_cast<std::size_t>(m_selected_piece), a, m_document.options());
+    });
+  });
   connect(m_parameters, &ParameterPanel::segmentAlphaChanged, this, [this](double a) {
+    m_canvas->setPreview(std::nullopt);
     if (m_selected_stroke >= 0 && m_selected_piece >= 0)
       m_undo->push(new EditStrokeCommand(this, "steer segment alpha", static_cast<std::size_t>(m_selected_stroke),
                                          m_selected_piece, [stroke = m_selected_stroke, piece = m_selected_piece, a](Document& d) {

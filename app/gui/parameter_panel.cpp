@@ -4,10 +4,16 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QSlider>
 #include <QSpinBox>
 #include <cmath>
 
 namespace la::gui {
+namespace {
+constexpr double kAlphaRange = 3.0;        // the pipeline's alpha range (FitOptions::min_alpha, max_alpha)
+constexpr double kAlphaSliderStep = 0.01;  // one slider tick
+int sliderTicks(double alpha) { return static_cast<int>(std::lround(alpha / kAlphaSliderStep)); }
+}  // namespace
 
 ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   auto* form = new QFormLayout(this);
@@ -37,15 +43,37 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_corners = new QCheckBox("keep sharp corners");
   form->addRow("", m_corners);
   m_alpha = new QDoubleSpinBox;
-  m_alpha->setRange(-3.0, 3.0);
+  m_alpha->setRange(-kAlphaRange, kAlphaRange);
   m_alpha->setSingleStep(0.1);
   m_alpha->setDecimals(2);
   m_alpha->setKeyboardTracking(false);
   m_alpha->setToolTip("Right-click a segment to steer its LCG slope alpha; the curve stays G2");
   form->addRow("Segment alpha", m_alpha);
+  // The slider previews while it is dragged and edits once, on release (one undo step).
+  m_alpha_slider = new QSlider(Qt::Horizontal);
+  m_alpha_slider->setRange(sliderTicks(-kAlphaRange), sliderTicks(kAlphaRange));
+  m_alpha_slider->setTracking(false);
+  form->addRow("", m_alpha_slider);
   setSegmentAlpha(false, 0.0, "right-click a segment first");
   connect(m_alpha, &QDoubleSpinBox::valueChanged, this, [this](double a) {
-    if (!m_updating) emit segmentAlphaChanged(a);
+    if (m_updating) return;
+    m_updating = true;
+    m_alpha_slider->setValue(sliderTicks(a));
+    m_updating = false;
+    emit segmentAlphaChanged(a);
+  });
+  connect(m_alpha_slider, &QSlider::sliderMoved, this, [this](int ticks) {
+    m_updating = true;
+    m_alpha->setValue(ticks * kAlphaSliderStep);
+    m_updating = false;
+    emit segmentAlphaPreviewed(ticks * kAlphaSliderStep);
+  });
+  connect(m_alpha_slider, &QSlider::valueChanged, this, [this](int ticks) {
+    if (m_updating) return;
+    m_updating = true;
+    m_alpha->setValue(ticks * kAlphaSliderStep);
+    m_updating = false;
+    emit segmentAlphaChanged(ticks * kAlphaSliderStep);
   });
   setOptions(FitOptions{});
   auto changed = [this] {
@@ -72,8 +100,13 @@ void ParameterPanel::setOptions(const FitOptions& o) {
 void ParameterPanel::setSegmentAlpha(bool enabled, double alpha, const QString& reason) {
   m_updating = true;
   m_alpha->setEnabled(enabled);
-  if (enabled) m_alpha->setValue(alpha);
+  m_alpha_slider->setEnabled(enabled);
+  if (enabled) {
+    m_alpha->setValue(alpha);
+    m_alpha_slider->setValue(sliderTicks(alpha));
+  }
   m_alpha->setToolTip(enabled ? "the selected segment's LCG slope; the curve stays G2" : reason);
+  m_alpha_slider->setToolTip(m_alpha->toolTip());
   m_updating = false;
 }
 

@@ -9,6 +9,7 @@
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
+class QSlider;
 class QSpinBox;
 
 namespace la::gui {
@@ -24,7 +25,8 @@ class ParameterPanel : public QWidget {
 
  signals:
   void optionsChanged(const la::FitOptions& options);
-  void segmentAlphaChanged(double alpha);
+  void segmentAlphaChanged(double alpha);    // an edit: typed, or the slider released
+  void segmentAlphaPreviewed(double alpha);  // the slider is being dragged
 
  private:
   QDoubleSpinBox* m_tolerance = nullptr;  // percent of the stroke's diagonal
@@ -33,6 +35,7 @@ class ParameterPanel : public QWidget {
   QDoubleSpinBox* m_threshold = nullptr;  // log10 of the relative G2 gap
   QCheckBox* m_corners = nullptr;
   QDoubleSpinBox* m_alpha = nullptr;      // the selected segment's alpha
+  QSlider* m_alpha_slider = nullptr;      // the same, in steps of kAlphaSliderStep
   FitOptions m_base;                      // the options not on the panel
   bool m_updating = false;
 };

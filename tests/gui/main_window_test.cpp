@@ -11,6 +11,7 @@
 #include <QStandardPaths>
 #include <QTabletEvent>
 #include <QTemporaryDir>
+#include <QSlider>
 #include <QTest>
 #include <QUndoStack>
 #include <cmath>
@@ -212,6 +213,33 @@ TEST_F(MainWindowTest, SteeringASegmentAlphaKeepsG2AndUndoes) {
     return;
   }
   GTEST_SKIP() << "no steerable segment in this stroke";
+}
+
+// The alpha slider: dragging previews without editing, releasing makes one undoable edit.
+TEST_F(MainWindowTest, AlphaSliderPreviewsWhileDraggedAndEditsOnRelease) {
+  drawWithMouse(window->canvas(), wave());
+  const FitResult before = lastFit();
+  auto* slider = window->parameters()->findChild<QSlider*>();
+  ASSERT_NE(slider, nullptr);
+  for (std::size_t i = 0; i < before.pieces.size(); ++i) {
+    if (before.pieces[i].kind != PieceKind::kThreePoint) continue;
+    window->selectSegment(0, static_cast<int>(i));
+    ASSERT_TRUE(slider->isEnabled());
+    const int undo_steps = window->undoStack()->count();
+    const double wanted = std::clamp(std::round((before.curve.pieces[i].segment.alpha() + 0.3) * 100.0) / 100.0, -3.0, 3.0);
+    slider->setSliderDown(true);
+    slider->setSliderPosition(static_cast<int>(std::lround(wanted * 100.0)));  // emits sliderMoved
+    if (!window->canvas()->hasPreview()) continue;  // infeasible alpha for this piece: no preview, try another
+    EXPECT_EQ(window->undoStack()->count(), undo_steps) << "dragging must not edit";
+    EXPECT_DOUBLE_EQ(lastFit().curve.pieces[i].segment.alpha(), before.curve.pieces[i].segment.alpha());
+    slider->setSliderDown(false);  // release: the value is committed
+    EXPECT_FALSE(window->canvas()->hasPreview());
+    EXPECT_EQ(window->undoStack()->count(), undo_steps + 1) << "one edit on release";
+    EXPECT_NEAR(lastFit().curve.pieces[i].segment.alpha(), wanted, 1e-12);
+    EXPECT_LT(lastFit().quality.g2_gap, 1e-6);
+    return;
+  }
+  GTEST_SKIP() << "no segment of this stroke takes that alpha";
 }
 
 TEST_F(MainWindowTest, CtrlDragAJointKeepsG2AndUndoes) {
