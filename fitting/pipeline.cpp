@@ -9,6 +9,7 @@
 
 #include "core/lcg.h"
 #include "core/three_point_segment.h"
+#include "fitting/chain_polish.h"
 
 namespace la {
 namespace {
@@ -533,6 +534,26 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
   }
 }
 
+double maxDeviation(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
+  Curve curve;
+  for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
+  const std::vector<double> d = distancesToCurve(curve, points, diag, kRefineResolution);
+  return d.empty() ? 0.0 : *std::max_element(d.begin(), d.end());
+}
+
+void polishPart(PartFit& fit, const Part& part, double tol, double diag, const FitOptions& options) {
+  PolishOptions po;
+  po.min_alpha = options.min_alpha;
+  po.max_alpha = options.max_alpha;
+  po.fix_start = part.starts_at_corner;
+  const PolishResult polished = polishChain(fit.segments, part.points, po);
+  if (!polished.improved) return;
+  const double before = maxDeviation(fit.segments, part.points, diag);
+  if (maxDeviation(polished.segments, part.points, diag) > std::max(tol, before)) return;
+  fit.segments = polished.segments;
+  for (std::size_t i = 0; i < fit.segments.size(); ++i) fit.reports[i].alpha = fit.segments[i].alpha();
+}
+
 }  // namespace
 
 FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
@@ -556,6 +577,13 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
     PartFit fit = fitPart(parts[k], r.tolerance, sigma, diag, options, r.timings, r.warnings);
+    // An open stroke's last part (its end is free; a part that ends at a corner must keep
+    // it) is polished, and keeps the polish where it stays within the tolerance.
+    if (options.polish && fit.g2.usable() && !r.cleaned.closed && k + 1 == parts.size()) {
+      const auto tp = Clock::now();
+      polishPart(fit, parts[k], r.tolerance, diag, options);
+      r.timings.polish_ms += msSince(tp);
+    }
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);

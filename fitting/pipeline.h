@@ -9,7 +9,8 @@
 //   4 alpha per piece  LCG regression (inflection pieces solve alpha)  core/lcg.h
 //   5 LA segment per piece from its control triangle                 fitting/chain.h
 //   6 makeG2           rotate joint tangents until curvature is continuous  fitting/g2_joints.h
-//   7 quality figures  fitting/quality.h
+//   7 polishChain      least squares on the whole G2 chain (open parts) fitting/chain_polish.h
+//   8 quality figures  fitting/quality.h
 // A stroke with deliberate corners is fitted piecewise between them; the segment after
 // a corner carries corner = true.
 
@@ -37,6 +38,9 @@ struct FitOptions {
   double g2_threshold = 1e-6;
   /// Alpha from the LCG is kept inside this range (a noisy LCG can be steep).
   double min_alpha = -3.0, max_alpha = 3.0;
+  /// Stage 7: fit the G2 chain of an open part to the points by least squares
+  /// (fitting/chain_polish.h); a few milliseconds, so the live preview skips it.
+  bool polish = true;
 };
 
 /// One piece of the segmentation and how its LA segment was made.
@@ -56,8 +60,8 @@ struct PieceReport {
 /// its solves happen inside alpha_ms (feasibility of each piece's alpha) and g2_ms
 /// (the first build of the chain and every rebuild while the joints move).
 struct StageTimings {
-  double cleanup_ms = 0, smoothing_ms = 0, segmentation_ms = 0, alpha_ms = 0, g2_ms = 0, quality_ms = 0,
-         total_ms = 0;
+  double cleanup_ms = 0, smoothing_ms = 0, segmentation_ms = 0, alpha_ms = 0, g2_ms = 0, polish_ms = 0,
+         quality_ms = 0, total_ms = 0;
 };
 
 struct FitResult {

@@ -50,7 +50,8 @@ nlohmann::json fitResultToJson(const FitResult& r, const Stroke& raw, bool with_
   j["quality"] = quality;
   j["timings_ms"] = {{"cleanup", r.timings.cleanup_ms},   {"smoothing", r.timings.smoothing_ms},
                      {"segmentation", r.timings.segmentation_ms}, {"alpha", r.timings.alpha_ms},
-                     {"g2", r.timings.g2_ms},             {"quality", r.timings.quality_ms},
+                     {"g2", r.timings.g2_ms},             {"polish", r.timings.polish_ms},
+                     {"quality", r.timings.quality_ms},
                      {"total", r.timings.total_ms},       {"points", raw.samples.size()}};
   j["solvers"] = {{"smoothing", reportToJson(r.smoothing)}, {"g2", reportToJson(r.g2)}};
   if (!r.warnings.empty()) j["warnings"] = r.warnings;
