@@ -160,6 +160,7 @@ void fitDataSet(const DataSet& set, bool quality) {
   FitOptions options;  // the defaults (default tolerance: 0.5% of the diagonal)
   options.cleanup.assume_closed = set.assume_closed;
   int strokes = 0, fitted = 0, rejected = 0, raised = 0, failed = 0;
+  long segments = 0, extrema = 0;  // totals over the fitted strokes (fairness: few of both)
   double worst_ratio = 0.0;
   std::string worst_where;
   for (const fs::path& file : files) {
@@ -202,6 +203,8 @@ void fitDataSet(const DataSet& set, bool quality) {
         continue;
       }
       ++fitted;
+      segments += r.quality.segments;
+      extrema += r.quality.extrema;
       if (raisedTolerance(r)) ++raised;
       const double ratio = r.quality.max_dev / r.tolerance;
       if (!(ratio <= worst_ratio)) worst_ratio = ratio, worst_where = where;
@@ -238,8 +241,10 @@ void fitDataSet(const DataSet& set, bool quality) {
     }
   }
   std::printf("[ data set ] %s: %zu files, %d strokes: %d fitted, %d rejected as degenerate (StrokeError), "
-              "%d with failures; tolerance raised to the noise floor in %d; worst max_dev/tolerance %.4f (%s)\n",
-              set.name, files.size(), strokes, fitted, rejected, failed, raised, worst_ratio, worst_where.c_str());
+              "%d with failures; tolerance raised to the noise floor in %d; %ld segments and %ld curvature extrema "
+              "in total; worst max_dev/tolerance %.4f (%s)\n",
+              set.name, files.size(), strokes, fitted, rejected, failed, raised, segments, extrema, worst_ratio,
+              worst_where.c_str());
 }
 
 // Every stroke fits without an exception (degenerate ones with StrokeError only), gives
