@@ -40,9 +40,9 @@ constexpr int kMaxRefinePasses = 8;
 // Resolution of the deviations that decide those splits (relative to the diagonal;
 // 500 times below the default tolerance; the reported figures use 1e-6).
 constexpr double kRefineResolution = 1e-5;
-// Points on an integer grid (pixels) are off the true stroke by up to sqrt(2)/2 of a
-// unit; no curve can be closer to all of them than about this, so the tolerance is
-// not set below it.
+// Points on an integer grid (pixels, possibly offset) are off the true stroke by up to
+// sqrt(2)/2 of a unit; no curve can be closer to all of them than about this, so the
+// tolerance is not set below it.
 constexpr double kQuantizationFloor = 0.75;
 
 // The noise floor of the tolerance is this many standard deviations of the points'
@@ -74,8 +74,13 @@ double noiseSigma(const std::vector<Vec2>& p) {
 }
 
 double noiseFloor(const std::vector<Vec2>& p, double sigma) {
-  const bool on_grid = std::all_of(p.begin(), p.end(), [](const Vec2& q) {
-    return q.x() == std::round(q.x()) && q.y() == std::round(q.y());
+  // On a grid: every coordinate an integer away from the first point's (pixels, possibly
+  // shifted by a constant offset, as Omniglot's canvas units are), to rounding.
+  constexpr double kGridRounding = 1e-6;  // pixels; the files print 6 decimals
+  const Vec2 origin = p.front();
+  const bool on_grid = std::all_of(p.begin(), p.end(), [&](const Vec2& q) {
+    const Vec2 d = q - origin;
+    return std::abs(d.x() - std::round(d.x())) <= kGridRounding && std::abs(d.y() - std::round(d.y())) <= kGridRounding;
   });
   return std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor : 0.0);
 }
