@@ -40,9 +40,9 @@ constexpr int kMaxRefinePasses = 8;
 // Resolution of the deviations that decide those splits (relative to the diagonal;
 // 500 times below the default tolerance; the reported figures use 1e-6).
 constexpr double kRefineResolution = 1e-5;
-// Points on an integer grid (pixels, possibly offset) are off the true stroke by up to
-// sqrt(2)/2 of a unit; no curve can be closer to all of them than about this, so the
-// tolerance is not set below it.
+// Points on a grid (pixels) are off the true stroke by up to sqrt(2)/2 of a step; no
+// curve can be closer to all of them than about this, so the tolerance is not set below
+// this many steps.
 constexpr double kQuantizationFloor = 0.75;
 
 // The noise floor of the tolerance is this many standard deviations of the points'
@@ -73,16 +73,44 @@ double noiseSigma(const std::vector<Vec2>& p) {
   return d[d.size() / 2] / 0.6745 / std::sqrt(70.0);  // median of |N(0,s)| = 0.6745 s
 }
 
-double noiseFloor(const std::vector<Vec2>& p, double sigma) {
-  // On a grid: every coordinate an integer away from the first point's (pixels, possibly
-  // shifted by a constant offset, as Omniglot's canvas units are), to rounding.
-  constexpr double kGridRounding = 1e-6;  // pixels; the files print 6 decimals
-  const Vec2 origin = p.front();
-  const bool on_grid = std::all_of(p.begin(), p.end(), [&](const Vec2& q) {
-    const Vec2 d = q - origin;
-    return std::abs(d.x() - std::round(d.x())) <= kGridRounding && std::abs(d.y() - std::round(d.y())) <= kGridRounding;
-  });
-  return std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor : 0.0);
+// The points' noise: sigma per coordinate (the estimate above, plus the quantization
+// of a grid of step h: uniform on a step, variance h^2/12 per coordinate) and the floor
+// of the tolerance it implies.
+struct Noise {
+  double sigma = 0.0;
+  double floor = 0.0;
+};
+
+// The step of the grid the points lie on along one coordinate (every value an integer
+// number of steps from the smallest: pixels, possibly shifted and scaled, as Omniglot's
+// canvas units are), or 0 if they do not. The step is the smallest change between
+// consecutive points.
+double gridStep(const std::vector<Vec2>& p, int axis) {
+  constexpr double kRounding = 1e-3;  // in steps (the files print 6 decimals)
+  double step = INFINITY, lo = p.front()[axis], hi = lo;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const double d = std::abs(p[i][axis] - p[i - 1][axis]);
+    if (d > 0.0) step = std::min(step, d);
+    lo = std::min(lo, p[i][axis]), hi = std::max(hi, p[i][axis]);
+  }
+  if (!std::isfinite(step)) return 0.0;
+  step = (hi - lo) / std::round((hi - lo) / step);  // the printed step's rounding spread over the range
+  for (const Vec2& q : p) {
+    const double k = (q[axis] - lo) / step;
+    if (std::abs(k - std::round(k)) > kRounding) return 0.0;
+  }
+  return step;
+}
+
+Noise noiseOf(const std::vector<Vec2>& p) {
+  const double hx = gridStep(p, 0), hy = gridStep(p, 1);
+  const bool on_grid = hx > 0.0 && hy > 0.0;
+  const double h = std::max(hx, hy);
+  const double sigma = noiseSigma(p);
+  Noise n;
+  n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
+  n.floor = std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor * h : 0.0);
+  return n;
 }
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
@@ -318,7 +346,7 @@ struct PartFit {
 namespace {
 
 // Stages 2-6 for one corner-free part.
-PartFit fitPart(const Part& part, double tol, double sigma, double diag, const FitOptions& options,
+PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, const FitOptions& options,
                 StageTimings& timings, std::vector<std::string>& warnings) {
   PartFit out;
   out.smoothing = {SolveStatus::kConverged, 0, 0.0, "straight"};
@@ -336,10 +364,10 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
   auto t0 = Clock::now();
   SmoothingOptions so;
   // The spline's curvature feeds segmentation and alpha, so it is fitted tighter than the
-  // user's tolerance where the data allow: down to their noise level, or a fraction of
+  // user's tolerance where the data allow: down to their noise floor, or a fraction of
   // the tolerance for clean data.
-  so.tolerance = std::min(tol, std::max(kNoiseSigmas * sigma, kSplineToleranceFraction * tol));
-  so.noise_sigma = sigma;
+  so.tolerance = std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
+  so.noise_sigma = noise.sigma;
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
@@ -547,8 +575,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
   r.tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
-  const double sigma = noiseSigma(r.cleaned.points);
-  const double floor = noiseFloor(r.cleaned.points, sigma);
+  const Noise noise = noiseOf(r.cleaned.points);
+  const double floor = noise.floor;
   if (r.tolerance < floor) {
     r.warnings.push_back("tolerance raised from " + std::to_string(r.tolerance) + " to " + std::to_string(floor) +
                          ": the points are noisier than that (no curve comes closer to all of them)");
@@ -560,7 +588,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    PartFit fit = fitPart(parts[k], r.tolerance, sigma, diag, options, r.timings, r.warnings);
+    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings, r.warnings);
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);
