@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <cmath>
@@ -510,6 +512,14 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
       res = makeG2(chain, g2);
     }
     timings.g2_ms += msSince(t0);
+    if (std::getenv("LADBG")) {
+      std::fprintf(stderr, "pass %d n %zu g2 %s [%s] max_gap %g\n", pass, n, res.report.usable() ? "ok" : "FAIL", res.report.message.c_str(), res.max_gap);
+      for (std::size_t i = 0; i < n; ++i) {
+        const SegmentSolve sv = solvePiece(chain, i);
+        std::fprintf(stderr, "  piece %zu t[%.4f %.4f] %s/%s kind %s alpha %.3f pts %zu turn %.4f solve %s\n", i, reports[i].t0, reports[i].t1, toString(reports[i].start_kind), toString(reports[i].end_kind), toString(chain.pieces[i].kind), chain.pieces[i].alpha, members[i].size(), chain.angles[i + 1] - chain.angles[i], sv.report.usable() ? "ok" : sv.report.message.c_str());
+      }
+      for (std::size_t k = 0; k < res.gaps.size(); ++k) if (res.gaps[k] > 1e-6) std::fprintf(stderr, "  gap at eq %zu: %g\n", k, res.gaps[k]);
+    }
     // Pieces to halve: those with no LA segment (tangents not forming a convex
     // triangle, or no alpha reaching it), else those whose segment strays from the
     // points further than the tolerance (or the spline's own error there).
