@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <cmath>
@@ -36,14 +38,19 @@ constexpr int kAlphaRefinements = 6;
 constexpr std::size_t kAlphaPoints = 24;
 constexpr std::size_t kMinPointsForAlphaFit = 24;
 constexpr int kDeviationSamples = 24;
-// Passes that split pieces which fail (no LA segment) or stray from the points.
-constexpr int kMaxRefinePasses = 8;
+// Passes that split pieces which fail (no LA segment) or stray from the points, or merge
+// them (see below); halving a piece without an LA segment is tried in the first half of
+// them, and only on pieces holding this many points.
+constexpr int kMaxRefinePasses = 16;
+constexpr std::size_t kMinPointsToHalve = 2;
+// A closed part keeps at least this many pieces (each turns less than pi).
+constexpr std::size_t kMinClosedPieces = 3;
 // Resolution of the deviations that decide those splits (relative to the diagonal;
 // 500 times below the default tolerance; the reported figures use 1e-6).
 constexpr double kRefineResolution = 1e-5;
-// Points on an integer grid (pixels) are off the true stroke by up to sqrt(2)/2 of a
-// unit; no curve can be closer to all of them than about this, so the tolerance is
-// not set below it.
+// Points on a grid (pixels) are off the true stroke by up to sqrt(2)/2 of a step; no
+// curve can be closer to all of them than about this, so the tolerance is not set below
+// this many steps.
 constexpr double kQuantizationFloor = 0.75;
 
 // The noise floor of the tolerance is this many standard deviations of the points'
@@ -74,11 +81,44 @@ double noiseSigma(const std::vector<Vec2>& p) {
   return d[d.size() / 2] / 0.6745 / std::sqrt(70.0);  // median of |N(0,s)| = 0.6745 s
 }
 
-double noiseFloor(const std::vector<Vec2>& p, double sigma) {
-  const bool on_grid = std::all_of(p.begin(), p.end(), [](const Vec2& q) {
-    return q.x() == std::round(q.x()) && q.y() == std::round(q.y());
-  });
-  return std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor : 0.0);
+// The points' noise: sigma per coordinate (the estimate above, plus the quantization
+// of a grid of step h: uniform on a step, variance h^2/12 per coordinate) and the floor
+// of the tolerance it implies.
+struct Noise {
+  double sigma = 0.0;
+  double floor = 0.0;
+};
+
+// The step of the grid the points lie on along one coordinate (every value an integer
+// number of steps from the smallest: pixels, possibly shifted and scaled, as Omniglot's
+// canvas units are), or 0 if they do not. The step is the smallest change between
+// consecutive points.
+double gridStep(const std::vector<Vec2>& p, int axis) {
+  constexpr double kRounding = 1e-3;  // in steps (the files print 6 decimals)
+  double step = INFINITY, lo = p.front()[axis], hi = lo;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const double d = std::abs(p[i][axis] - p[i - 1][axis]);
+    if (d > 0.0) step = std::min(step, d);
+    lo = std::min(lo, p[i][axis]), hi = std::max(hi, p[i][axis]);
+  }
+  if (!std::isfinite(step)) return 0.0;
+  step = (hi - lo) / std::round((hi - lo) / step);  // the printed step's rounding spread over the range
+  for (const Vec2& q : p) {
+    const double k = (q[axis] - lo) / step;
+    if (std::abs(k - std::round(k)) > kRounding) return 0.0;
+  }
+  return step;
+}
+
+Noise noiseOf(const std::vector<Vec2>& p) {
+  const double hx = gridStep(p, 0), hy = gridStep(p, 1);
+  const bool on_grid = hx > 0.0 && hy > 0.0;
+  const double h = std::max(hx, hy);
+  const double sigma = noiseSigma(p);
+  Noise n;
+  n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
+  n.floor = std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor * h : 0.0);
+  return n;
 }
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
@@ -314,7 +354,7 @@ struct PartFit {
 namespace {
 
 // Stages 2-6 for one corner-free part.
-PartFit fitPart(const Part& part, double tol, double sigma, double diag, const FitOptions& options,
+PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, const FitOptions& options,
                 StageTimings& timings, std::vector<std::string>& warnings) {
   PartFit out;
   out.smoothing = {SolveStatus::kConverged, 0, 0.0, "straight"};
@@ -332,10 +372,10 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
   auto t0 = Clock::now();
   SmoothingOptions so;
   // The spline's curvature feeds segmentation and alpha, so it is fitted tighter than the
-  // user's tolerance where the data allow: down to their noise level, or a fraction of
+  // user's tolerance where the data allow: down to their noise floor, or a fraction of
   // the tolerance for clean data.
-  so.tolerance = std::min(tol, std::max(kNoiseSigmas * sigma, kSplineToleranceFraction * tol));
-  so.noise_sigma = sigma;
+  so.tolerance = std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
+  so.noise_sigma = noise.sigma;
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
@@ -352,6 +392,15 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
   const double period = spline.tMax() - spline.tMin();
   // Pieces a refinement pass leaves alone keep the alpha fitted to them before.
   std::map<std::pair<double, double>, double> fitted_alpha;
+  // The best G2 chain seen (least deviation beyond the tolerance): what the part gets if
+  // the passes run out on a worse one.
+  struct Snapshot {
+    G2Result res;
+    std::vector<PieceReport> reports;
+    std::vector<SplitPoint> splits;
+    double excess = INFINITY;
+  };
+  std::optional<Snapshot> best;
   for (int pass = 0;; ++pass) {
     // Stage 4-5: chain of pieces with alpha from the LCG.
     t0 = Clock::now();
@@ -478,22 +527,63 @@ PartFit fitPart(const Part& part, double tol, double sigma, double diag, const F
       res = makeG2(chain, g2);
     }
     timings.g2_ms += msSince(t0);
+    if (std::getenv("LADBG")) {
+      std::fprintf(stderr, "pass %d n %zu g2 %s [%s] max_gap %g\n", pass, n, res.report.usable() ? "ok" : "FAIL", res.report.message.c_str(), res.max_gap);
+      for (std::size_t i = 0; i < n; ++i) {
+        const SegmentSolve sv = solvePiece(chain, i);
+        std::fprintf(stderr, "  piece %zu t[%.4f %.4f] %s/%s kind %s alpha %.3f pts %zu turn %.4f solve %s\n", i, reports[i].t0, reports[i].t1, toString(reports[i].start_kind), toString(reports[i].end_kind), toString(chain.pieces[i].kind), chain.pieces[i].alpha, members[i].size(), chain.angles[i + 1] - chain.angles[i], sv.report.usable() ? "ok" : sv.report.message.c_str());
+      }
+      for (std::size_t k = 0; k < res.gaps.size(); ++k) if (res.gaps[k] > 1e-6) std::fprintf(stderr, "  gap at eq %zu: %g\n", k, res.gaps[k]);
+    }
     // Pieces to halve: those with no LA segment (tangents not forming a convex
     // triangle, or no alpha reaching it), else those whose segment strays from the
-    // points further than the tolerance (or the spline's own error there).
-    std::vector<bool> halve(n, false);
+    // points further than the tolerance (or the spline's own error there). Joints to
+    // drop (merging the pieces either side): where a piece without an LA segment holds
+    // too few points for halving to help (a near-cusp of the spline between close
+    // splits: halving it only makes smaller failing pieces). (Merging where G2 fails was
+    // tried too: on the shared data it traded the G2 failures for deviations of up to
+    // 15x the tolerance, the merged piece being split again at the same joint.)
+    std::vector<bool> halve(n, false), drop(n + 1, false);
     bool any = false;
+    const std::size_t joints = seg.splits.size();
+    // Interior joints of an open part; any joint of a closed one that keeps enough pieces.
+    auto droppable = [&](std::size_t j) { return seg.closed ? joints > kMinClosedPieces : (j > 0 && j < n); };
     if (res.segments.empty()) {
-      for (std::size_t i = 0; i < n; ++i) any |= halve[i] = !solvePiece(chain, i).report.usable();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (solvePiece(chain, i).report.usable()) continue;
+        any = true;
+        if (members[i].size() >= kMinPointsToHalve && pass < kMaxRefinePasses / 2) {
+          halve[i] = true;
+        } else if (droppable(i + 1) && !drop[i]) {
+          drop[i + 1] = true;
+        } else if (droppable(i)) {
+          drop[i] = true;
+        } else {
+          halve[i] = true;
+        }
+      }
     } else {
       const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
       const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
-      for (std::size_t i = 0; i < n; ++i) any |= halve[i] = dev[i] > std::max(tol, 1.05 * own[i]);
+      double excess = 0.0;  // largest deviation beyond what is allowed
+      for (std::size_t i = 0; i < n; ++i) {
+        const double allowed = std::max(tol, 1.05 * own[i]);
+        any |= halve[i] = dev[i] > allowed;
+        excess = std::max(excess, dev[i] - allowed);
+      }
+      if (res.report.usable() && (!best || excess < best->excess)) best = Snapshot{res, reports, seg.splits, excess};
+      if (any && pass >= kMaxRefinePasses && best && best->excess < excess) {
+        res = best->res;
+        reports = best->reports;
+        seg.splits = best->splits;
+        any = best->excess > 0.0;
+      }
     }
     if (any && pass < kMaxRefinePasses) {
+      if (seg.closed && drop[n]) drop[0] = true;  // joint n of a closed chain is joint 0
       std::vector<SplitPoint> splits;
       for (std::size_t i = 0; i < n; ++i) {
-        splits.push_back(seg.splits[i]);
+        if (!drop[i]) splits.push_back(seg.splits[i]);
         if (halve[i]) splits.push_back(halvingPoint(spline, reports[i].t0, reports[i].t1));
       }
       if (!seg.closed) splits.push_back(seg.splits.back());
@@ -563,8 +653,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
   r.tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
-  const double sigma = noiseSigma(r.cleaned.points);
-  const double floor = noiseFloor(r.cleaned.points, sigma);
+  const Noise noise = noiseOf(r.cleaned.points);
+  const double floor = noise.floor;
   if (r.tolerance < floor) {
     r.warnings.push_back("tolerance raised from " + std::to_string(r.tolerance) + " to " + std::to_string(floor) +
                          ": the points are noisier than that (no curve comes closer to all of them)");
@@ -576,7 +666,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    PartFit fit = fitPart(parts[k], r.tolerance, sigma, diag, options, r.timings, r.warnings);
+    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings, r.warnings);
     // An open stroke's last part (its end is free; a part that ends at a corner must keep
     // it) is polished, and keeps the polish where it stays within the tolerance.
     if (options.polish && fit.g2.usable() && !r.cleaned.closed && k + 1 == parts.size()) {

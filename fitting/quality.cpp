@@ -8,9 +8,85 @@
 namespace la {
 namespace {
 
-constexpr int kSearchWindow = 24;  // polyline edges either side of the previous foot, to start with
+// Cell size of the edge grid, in mean polyline edge lengths: a cell holds about this
+// many edges of a curve passing through it once, and a point within the tolerance of
+// the curve finds its foot in the first ring or two of cells.
+constexpr double kEdgesPerCell = 16.0;
+// Cells per axis at most (memory stays below a few MB for any curve).
+constexpr int kMaxCellsPerAxis = 512;
 
+// The polyline's edges bucketed in a uniform grid (compressed rows: cell c holds
+// edges[start[c] .. start[c+1])), for exact nearest-edge queries: rings of cells around
+// the query point are searched until the ring is further than the best edge found.
+// (Following the previous foot along the curve instead locks onto the wrong passage
+// where the curve comes back near itself: at a closed curve's seam, across a self-
+// intersection, on both sides of a thin trailing edge.)
+class EdgeGrid {
+ public:
+  explicit EdgeGrid(const std::vector<Vec2>& poly) : poly_(poly) {
+    const int edges = static_cast<int>(poly.size()) - 1;
+    lo_ = hi_ = poly.front();
+    double length = 0.0;
+    for (int e = 0; e < edges; ++e) length += (poly[e + 1] - poly[e]).norm();
+    for (const Vec2& q : poly) lo_ = lo_.cwiseMin(q), hi_ = hi_.cwiseMax(q);
+    const Vec2 extent = hi_ - lo_;
+    cell_ = std::max({kEdgesPerCell * length / std::max(edges, 1), extent.maxCoeff() / kMaxCellsPerAxis, 1e-300});
+    nx_ = std::clamp(static_cast<int>(extent.x() / cell_) + 1, 1, kMaxCellsPerAxis + 1);
+    ny_ = std::clamp(static_cast<int>(extent.y() / cell_) + 1, 1, kMaxCellsPerAxis + 1);
+    start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+    auto cover = [&](int e, auto&& visit) {  // the cells the edge's bounding box touches
+      const Vec2 a = poly[e].cwiseMin(poly[e + 1]), b = poly[e].cwiseMax(poly[e + 1]);
+      const int x0 = cellX(a.x()), x1 = cellX(b.x()), y0 = cellY(a.y()), y1 = cellY(b.y());
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) visit(static_cast<std::size_t>(y) * nx_ + x);
+    };
+    for (int e = 0; e < edges; ++e) cover(e, [&](std::size_t c) { ++start_[c + 1]; });
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    edges_.resize(start_.back());
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (int e = 0; e < edges; ++e) cover(e, [&](std::size_t c) { edges_[fill[c]++] = e; });
+  }
 
+  double distance(const Vec2& p) const {
+    // The point's cell (possibly outside the grid) and its Chebyshev distance to the grid.
+    constexpr double kFar = 1e9;  // cells; keeps the integer arithmetic in range
+    const int px = static_cast<int>(std::clamp(std::floor((p.x() - lo_.x()) / cell_), -kFar, kFar));
+    const int py = static_cast<int>(std::clamp(std::floor((p.y() - lo_.y()) / cell_), -kFar, kFar));
+    const int outside = std::max({0, -px, px - (nx_ - 1), -py, py - (ny_ - 1)});
+    double best = INFINITY;
+    auto visit = [&](int x, int y) {
+      const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+      for (int k = start_[c]; k < start_[c + 1]; ++k)
+        best = std::min(best, distanceToSegment(p, poly_[edges_[k]], poly_[edges_[k] + 1]));
+    };
+    for (int r = outside;; ++r) {
+      // Ring r: the cells at Chebyshev distance r (those inside the grid); the cells of
+      // ring r+1 and beyond are at least r cells away from p.
+      const int x0 = std::max(0, px - r), x1 = std::min(nx_ - 1, px + r);
+      const int y0 = std::max(0, py - r + 1), y1 = std::min(ny_ - 1, py + r - 1);
+      for (int y : {py - r, py + r}) {
+        if (y < 0 || y >= ny_) continue;
+        for (int x = x0; x <= x1; ++x) visit(x, y);
+        if (r == 0) break;
+      }
+      for (int x : {px - r, px + r}) {
+        if (r == 0 || x < 0 || x >= nx_) continue;
+        for (int y = y0; y <= y1; ++y) visit(x, y);
+      }
+      if (best <= r * cell_ || r > outside + nx_ + ny_) return best;
+    }
+  }
+
+ private:
+  int cellX(double x) const { return std::clamp(static_cast<int>((x - lo_.x()) / cell_), 0, nx_ - 1); }
+  int cellY(double y) const { return std::clamp(static_cast<int>((y - lo_.y()) / cell_), 0, ny_ - 1); }
+
+  const std::vector<Vec2>& poly_;
+  Vec2 lo_, hi_;
+  double cell_ = 1.0;
+  int nx_ = 1, ny_ = 1;
+  std::vector<int> start_, edges_;
+};
 
 }  // namespace
 
@@ -32,43 +108,8 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     for (std::size_t i = 0; i < points.size(); ++i) out[i] = poly.empty() ? INFINITY : (points[i] - poly[0]).norm();
     return out;
   }
-  const int edges = static_cast<int>(poly.size()) - 1;
-  auto nearest = [&](const Vec2& p, int lo, int hi, double& best, int& best_e) {
-    for (int e = std::max(0, lo); e <= std::min(edges - 1, hi); ++e) {
-      const double d = distanceToSegment(p, poly[e], poly[e + 1]);
-      if (d < best) best = d, best_e = e;
-    }
-  };
-  // Points and curve run in the same order, so each foot is searched near the last
-  // one, the window growing while the best edge sits on its border (for a closed curve
-  // the seam is found by the check below). The first point gets the whole curve.
-  // A window can lock onto a wrong passage where the curve comes back near itself:
-  // a foot further than kLostFraction of the diagonal is checked against the whole curve.
-  constexpr double kLostFraction = 0.01;
-  int foot = -1;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    double best = INFINITY;
-    int best_e = -1;
-    if (foot < 0) {
-      nearest(points[i], 0, edges - 1, best, best_e);
-    } else {
-      int lo = foot - kSearchWindow, hi = foot + kSearchWindow;
-      nearest(points[i], lo, hi, best, best_e);
-      while ((best_e == std::max(0, lo) && lo > 0) || (best_e == std::min(edges - 1, hi) && hi < edges - 1)) {
-        const int width = hi - lo;
-        if (best_e <= lo) {
-          nearest(points[i], lo - width, lo - 1, best, best_e);
-          lo -= width;
-        } else {
-          nearest(points[i], hi + 1, hi + width, best, best_e);
-          hi += width;
-        }
-      }
-    }
-    if (best > kLostFraction * diagonal) nearest(points[i], 0, edges - 1, best, best_e);
-    out[i] = best;
-    foot = best_e;
-  }
+  const EdgeGrid grid(poly);
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = grid.distance(points[i]);
   return out;
 }
 

@@ -23,8 +23,8 @@ struct QualityFigures {
 };
 
 /// Distances from each point to the curve: to a polyline of the curve whose chords stay
-/// within `resolution` * diagonal of it (their sagitta kappa h^2 / 8), searched near the
-/// previous point's foot first, everywhere when that is not close.
+/// within `resolution` * diagonal of it (their sagitta kappa h^2 / 8); the nearest edge is
+/// found exactly (a uniform grid of the edges, searched in rings around the point).
 std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal,
                                      double resolution = 1e-6);
 

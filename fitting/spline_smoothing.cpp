@@ -12,9 +12,14 @@
 namespace la {
 namespace {
 
-// A span is split only while it holds this many points: below that, a point out of
-// tolerance is noise (or an outlier) the spline should not chase.
+// A span holding this many points is split whenever one of them is out of tolerance.
+// A sparser span (sparse strokes: $1 gestures have 30-80 points) is split only where
+// the miss is shared: a point out of tolerance whose neighbour lies on the same side of
+// the spline. A lone outlier pulls the spline towards itself and so its neighbours to
+// the other side: that one is not chased (a knot per point is not fairing). Spans of
+// fewer than 2 points are never split.
 constexpr int kMinPointsToSplit = 6;
+constexpr int kMinPointsToSplitShared = 2;
 // Up to this many control points the normal equations are solved dense (faster than
 // the sparse factorization's set-up); above, sparse LDLT.
 constexpr int kDenseLimit = 48;
@@ -169,19 +174,36 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
       return result;
     }
     if (current.max_error <= options.tolerance || round + 1 == options.max_rounds) break;
-    // Split every span holding a point out of tolerance (if it holds enough points).
+    // Split every span holding a point out of tolerance (if it holds enough points, or
+    // the miss is shared, see kMinPointsToSplit).
     const CubicBSpline spline = makeSpline(breaks, current.control, closed);
     const int spans = static_cast<int>(breaks.size()) - 1;
-    std::vector<int> bad(spans, 0), count(spans, 0);
+    std::vector<int> bad(spans, 0), shared(spans, 0), count(spans, 0);
+    std::vector<int> span_of(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      const int j = std::clamp(spline.span(current.t[i]) - 3, 0, spans - 1);
+      const int j = span_of[i] = std::clamp(spline.span(current.t[i]) - 3, 0, spans - 1);
       ++count[j];
       if (current.dist[i] > options.tolerance) bad[j] = 1;
+    }
+    // In sparse spans: is a miss shared by a neighbour on the same side of the spline
+    // (signed distance along the normal)?
+    auto side = [&](std::size_t i) {
+      const Vec2 d1 = spline.evaluate(current.t[i], 1);
+      return cross(d1, pts[i] - spline.point(current.t[i]));
+    };
+    const std::size_t n = pts.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int j = span_of[i];
+      if (!bad[j] || count[j] >= kMinPointsToSplit || shared[j] || current.dist[i] <= options.tolerance) continue;
+      const double mine = side(i);
+      if ((closed || i > 0) && side((i + n - 1) % n) * mine > 0.0) shared[j] = 1;
+      if ((closed || i + 1 < n) && side((i + 1) % n) * mine > 0.0) shared[j] = 1;
     }
     std::vector<double> next{breaks.front()};
     bool split = false;
     for (int j = 0; j < spans; ++j) {
-      if (bad[j] && count[j] >= kMinPointsToSplit && spans + 1 <= options.max_spans) {
+      const bool worth = count[j] >= kMinPointsToSplit || (shared[j] && count[j] >= kMinPointsToSplitShared);
+      if (bad[j] && worth && spans + 1 <= options.max_spans) {
         next.push_back(0.5 * (breaks[j] + breaks[j + 1]));
         split = true;
       }

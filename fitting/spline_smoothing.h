@@ -8,7 +8,8 @@
 // a sparse symmetric system in the control points (bandwidth 3; the periodic case
 // wraps around). The jerk penalty w is scale-free: t is normalized and the data term
 // grows with N. Knots start uniform and are added at the middle of every span whose
-// worst point is out of tolerance; between solves the parameters t_i move to the foot
+// worst point is out of tolerance (in a span of few points only where a neighbour
+// misses on the same side: a lone outlier is not chased); between solves the parameters t_i move to the foot
 // points (Newton on (C(t) - X) . C'(t) = 0). Once within tolerance, w is raised
 // (bisection on log w) until the residuals reach the noise level of the points, which
 // removes the curvature wiggles the noise made and keeps the curvature of clean data.

@@ -293,7 +293,7 @@ class Polyline {
 
 /// Deliberate corners: turn over the window above corner_min_angle, sharp, then
 /// non-maximum suppression (strongest first) and each placed on the point farthest from
-/// the chord across its window.
+/// the chord (segment) across its window.
 std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, double w,
                                      const CleanupOptions& options) {
   const Polyline line(p, closed);
@@ -321,11 +321,13 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
 
   std::vector<std::ptrdiff_t> accepted;
   for (const Candidate& c : candidates) {
-    // The vertex: the point of the window farthest from the chord P_a P_b.
+    // The vertex: the point of the window farthest from the chord P_a P_b (the segment,
+    // not its line: at a hairpin the chord is short and across the legs, and points far
+    // along a leg are further from its line than the tip is).
     std::ptrdiff_t vertex = c.i;
     double farthest = -1.0;
     for (std::ptrdiff_t j = c.turn.a + 1; j < c.turn.b; ++j) {
-      const double d = lineDistance(line.at(j), line.at(c.turn.a), line.at(c.turn.b));
+      const double d = distanceToSegment(line.at(j), line.at(c.turn.a), line.at(c.turn.b));
       if (d > farthest) {
         farthest = d;
         vertex = line.wrap(j);
