@@ -26,6 +26,14 @@ constexpr std::array<double, 3> kPieceFraction = {0.25, 0.5, 0.25};
 // ~3^-32 ~ 5e-16 relative error (the same bound as core/three_point_segment.cpp).
 constexpr int kNodes = 16;
 constexpr double kSingularWidthRatio = 3.0;
+// Easy panels get 8 nodes: width at most kEasyWidthRatio times the distance to the
+// branch point (ellipse parameter >= 9.9, error ~ 9.9^-16 ~ 1e-16), turning at most
+// kEasyTurning (GL8 error ~ 0.75^16 / 16! ~ 5e-16) and, alpha = 0, a change of
+// log|kappa| at most kEasyLogChange.
+constexpr int kEasyNodes = 8;
+constexpr double kEasyWidthRatio = 0.5;
+constexpr double kEasyTurning = 1.5;
+constexpr double kEasyLogChange = 1.5;
 // Turning per panel: GL16 on exp(i theta) with theta varying by 6 rad errs by
 // ~ 3^32 / 32! ~ 1e-20.
 constexpr double kMaxPanelTurning = 6.0;
@@ -45,7 +53,14 @@ constexpr int kPolishSteps = 4;
 constexpr double kMaxLogLengthStep = 1.0;
 constexpr double kMaxLogKappaStep = 2.0;
 constexpr double kMaxRelativeQStep = 2.0;
-constexpr int kMaxHalvings = 30;
+constexpr int kMaxHalvings = 8;
+// Newton gives up after this many damped steps (t < 1/8) in a row: it is crawling
+// towards a boundary of the domain, not converging.
+constexpr int kMaxDampedSteps = 6;
+// Iterates beyond these (normalized by the chord) are taken as diverging: the family of
+// solutions has left the domain (a joint curvature blowing up, typically for alpha > 1).
+constexpr double kMaxNormalizedKappa = 1e6;
+constexpr double kMaxNormalizedLength = 1e4;
 // The fast model's residual is ~1e-15; below this the line search may stall on rounding,
 // and the verified residual decides.
 constexpr double kFastNoiseFloor = 1e-10;
@@ -61,33 +76,35 @@ using Vars = Eigen::Vector3d;  // (log L, y1, y2)
 /// so sum_j integral[k][j] f(t_j) integrates f from 0 to t_k (exact for degree < N).
 /// Built from the Legendre expansion l_j = sum_n (2n+1)/2 w_j P_n(x_j) P_n(x) and
 /// integral_{-1}^x P_n = (P_{n+1} - P_{n-1})/(2n+1).
+template <int N>
 struct CollocationRule {
-  std::array<double, kNodes> node{}, weight{};
-  std::array<std::array<double, kNodes>, kNodes> integral{};
+  std::array<double, N> node{}, weight{};
+  std::array<std::array<double, N>, N> integral{};
 };
 
-const CollocationRule& collocationRule() {
-  static const CollocationRule rule = [] {
-    CollocationRule r;
-    const auto& gl = gaussLegendre<kNodes>();
+template <int N>
+const CollocationRule<N>& collocationRule() {
+  static const CollocationRule<N> rule = [] {
+    CollocationRule<N> r;
+    const auto& gl = gaussLegendre<N>();
     r.node = gl.node;
     r.weight = gl.weight;
-    auto legendre = [](double x, std::array<double, kNodes + 1>& p) {
+    auto legendre = [](double x, std::array<double, N + 1>& p) {
       p[0] = 1.0;
       p[1] = x;
-      for (int n = 1; n < kNodes; ++n) p[n + 1] = ((2.0 * n + 1.0) * x * p[n] - n * p[n - 1]) / (n + 1.0);
+      for (int n = 1; n < N; ++n) p[n + 1] = ((2.0 * n + 1.0) * x * p[n] - n * p[n - 1]) / (n + 1.0);
     };
-    std::array<double, kNodes + 1> pj, pk;
-    for (int k = 0; k < kNodes; ++k) {
+    std::array<double, N + 1> pj, pk;
+    for (int k = 0; k < N; ++k) {
       const double xk = 2.0 * r.node[k] - 1.0;
       legendre(xk, pk);
-      std::array<double, kNodes> in{};
+      std::array<double, N> in{};
       in[0] = xk + 1.0;
-      for (int n = 1; n < kNodes; ++n) in[n] = (pk[n + 1] - pk[n - 1]) / (2.0 * n + 1.0);
-      for (int j = 0; j < kNodes; ++j) {
+      for (int n = 1; n < N; ++n) in[n] = (pk[n + 1] - pk[n - 1]) / (2.0 * n + 1.0);
+      for (int j = 0; j < N; ++j) {
         legendre(2.0 * r.node[j] - 1.0, pj);
         double sum = 0.0;
-        for (int n = 0; n < kNodes; ++n) sum += 0.5 * (2.0 * n + 1.0) * pj[n] * in[n];
+        for (int n = 0; n < N; ++n) sum += 0.5 * (2.0 * n + 1.0) * pj[n] * in[n];
         r.integral[k][j] = r.weight[j] * sum;
       }
     }
@@ -179,21 +196,33 @@ struct Panel {
   double lo = 0.0, hi = 0.0;  // arc length within the part
   int power = 1;              // substitution s = lo + (hi-lo) t^power (or from hi)
   bool from_hi = false;
+  int nodes = kNodes;
 };
 
-/// Panels of a part such that the fixed 16-node rule is accurate on each (see the
-/// constants): graded towards the branch point of the LA law, a substituted first
-/// panel at a zero-curvature end, and no panel turning more than kMaxPanelTurning.
+/// Panels of a part such that the fixed Gauss-Legendre rule is accurate on each (see
+/// the constants): graded towards the branch point of the LA law, a substituted first
+/// panel at a zero-curvature end, no panel turning more than kMaxPanelTurning; 8 nodes
+/// where that is enough, 16 elsewhere. Panels come in increasing s.
 void layoutPanels(const Problem& pb, const LaSegment& seg, std::vector<Panel>& panels) {
   panels.clear();
   const double len = seg.length();
   const double ka = seg.kappaStart(), kb = seg.kappaEnd();
-  std::vector<Panel> graded;
+  struct Graded {
+    Panel panel;
+    double width_ratio;  // width / distance to the branch point (0: none)
+  };
+  std::array<Graded, kMaxPanelsPerPart> graded;
+  int count = 0;
   if (ka == kb || pb.beta_integer || pb.alpha == 0.0) {
-    int n = 1;
-    if (pb.alpha == 0.0 && ka != kb) n = static_cast<int>(std::ceil(std::abs(std::log(kb / ka)) / kMaxLogChange));
-    n = std::clamp(n, 1, kMaxPanelsPerPart);
-    for (int i = 0; i < n; ++i) graded.push_back({len * i / n, i + 1 == n ? len : len * (i + 1) / n, 1, false});
+    const double log_change = (pb.alpha == 0.0 && ka != kb) ? std::abs(std::log(kb / ka)) : 0.0;
+    const int n = std::clamp(static_cast<int>(std::ceil(log_change / kMaxLogChange)), 1, kMaxPanelsPerPart);
+    for (int i = 0; i < n; ++i) {
+      Panel p;
+      p.lo = len * i / n;
+      p.hi = (i + 1 == n) ? len : len * (i + 1) / n;
+      p.nodes = (log_change / n <= kEasyLogChange) ? kEasyNodes : kNodes;
+      graded[count++] = {p, 0.0};
+    }
   } else {
     // |kappa|^(-alpha) is linear and vanishes at the branch point, at distance d (in
     // units of len) beyond the near end.
@@ -216,35 +245,40 @@ void layoutPanels(const Problem& pb, const LaSegment& seg, std::vector<Panel>& p
     double x = 0.0;  // distance from the near end, in units of len
     while (x < 1.0) {
       double w = (x == 0.0 && d == 0.0) ? kZeroEndPanel : kSingularWidthRatio * (d + x);
-      if (x + w >= 1.0 || static_cast<int>(graded.size()) + 1 >= kMaxPanelsPerPart) w = 1.0 - x;
-      const double a = x, b = (x + w >= 1.0) ? 1.0 : x + w;
+      if (x + w >= 1.0 || count + 1 >= kMaxPanelsPerPart) w = 1.0 - x;
+      const double lo = x, hi = (x + w >= 1.0) ? 1.0 : x + w;
       Panel p;
       p.power = (x == 0.0) ? power : 1;
+      p.nodes = (p.power == 1 && hi - lo <= kEasyWidthRatio * (d + x)) ? kEasyNodes : kNodes;
       if (near_hi) {
-        p.lo = len * (1.0 - b);
-        p.hi = (a == 0.0) ? len : len * (1.0 - a);
+        p.lo = len * (1.0 - hi);
+        p.hi = (lo == 0.0) ? len : len * (1.0 - lo);
         p.from_hi = true;
       } else {
-        p.lo = len * a;
-        p.hi = (b == 1.0) ? len : len * b;
+        p.lo = len * lo;
+        p.hi = (hi == 1.0) ? len : len * hi;
       }
-      graded.push_back(p);
-      x = b;
+      graded[count++] = {p, (d + x > 0.0) ? (hi - lo) / (d + x) : INFINITY};
+      x = hi;
     }
-    if (near_hi) std::reverse(graded.begin(), graded.end());  // panels in increasing s
+    if (near_hi) std::reverse(graded.begin(), graded.begin() + count);  // panels in increasing s
   }
   // Split panels that turn too much (uniformly; a substituted panel keeps its
   // substitution on the sub-panel at the zero end).
-  for (const Panel& p : graded) {
+  for (int g = 0; g < count; ++g) {
+    const Panel& p = graded[g].panel;
     const double turn = std::abs(seg.theta(p.hi) - seg.theta(p.lo));
     const int n = std::clamp(static_cast<int>(std::ceil(turn / kMaxPanelTurning)), 1, kMaxPanelsPerPart);
     for (int i = 0; i < n; ++i) {
-      Panel q;
+      Panel q = p;
       q.lo = p.lo + (p.hi - p.lo) * i / n;
       q.hi = (i + 1 == n) ? p.hi : p.lo + (p.hi - p.lo) * (i + 1) / n;
       const bool at_zero_end = p.from_hi ? (i + 1 == n) : (i == 0);
       q.power = at_zero_end ? p.power : 1;
-      q.from_hi = p.from_hi;
+      // sub-panels are no closer to the branch point than the panel
+      const bool easy = q.power == 1 && turn / n <= kEasyTurning &&
+                        (p.nodes == kEasyNodes || graded[g].width_ratio / n <= kEasyWidthRatio);
+      q.nodes = easy ? kEasyNodes : kNodes;
       panels.push_back(q);
     }
   }
@@ -262,118 +296,135 @@ struct Workspace {
   std::vector<Panel> panels;
 };
 
-/// The fast model: residual and Jacobian on fixed Gauss-Legendre panels.
-Evaluation evaluate(const Problem& pb, const Vars& x, Workspace& ws) {
-  Evaluation ev;
-  if (!buildParts(pb, x, ws.parts)) return ev;
-  const CollocationRule& rule = collocationRule();
-  const double length = std::exp(x[0]);
-  const std::array<double, 4> y = {pb.y0, x[1], x[2], pb.y3};
-
+/// Sums of the fast model over the panels, in order of s.
+struct Sums {
   Vec2 pos = Vec2::Zero();           // P at the current panel's start
   Vec2 d_log_length = Vec2::Zero();  // integral of (theta - phi0) i exp(i theta)
   double g[2] = {0.0, 0.0};          // integral of d kappa / d y_j so far: d theta / d y_j at the panel start
   Vec2 d_y[2] = {Vec2::Zero(), Vec2::Zero()};  // integral of (d theta / d y_j) i exp(i theta)
-  std::array<double, kNodes> c, sn, w, th, da, db;
+};
+
+/// What the panels of one part need to know about it.
+struct PartLaw {
+  int piece = 0;
+  double ell = 0.0;          // length of the piece
+  double s_in_piece = 0.0;   // the part's start in the piece
+  double qa = 0.0, qb = 0.0; // y at the piece's ends
+  double log_r = 0.0;        // alpha > 0: log(q_b / q_a) with q = |k|^(-alpha)
+  bool zero_end = false;     // the part reaches kappa = 0 at an end
+};
+
+template <int N>
+void accumulatePanel(const Problem& pb, const LaSegment& seg, const PartLaw& law, const Panel& p, Sums& sums) {
+  const CollocationRule<N>& rule = collocationRule<N>();
+  std::array<double, N> c, sn, w, th, f1, f2;
+  const double h = p.hi - p.lo;
+  const int j = law.piece;
+  for (int k = 0; k < N; ++k) {
+    const double t = rule.node[k];
+    double s, dsdt;
+    if (p.power == 1) {
+      s = p.from_hi ? p.hi - h * t : p.lo + h * t;
+      dsdt = h;
+    } else {
+      const double tp = std::pow(t, p.power - 1);
+      s = p.from_hi ? p.hi - h * tp * t : p.lo + h * tp * t;
+      dsdt = h * p.power * tp;
+    }
+    th[k] = seg.theta(s);
+    const double kappa = seg.kappa(s);
+    c[k] = std::cos(th[k]);
+    sn[k] = std::sin(th[k]);
+    w[k] = rule.weight[k] * dsdt;
+    // d kappa / d y at the piece's start (da) and end (db); u = s / ell in the piece.
+    const double u = (law.s_in_piece + s) / law.ell, u1 = 1.0 - u;
+    double da, db;
+    if (pb.signed_power) {  // kappa = F(v), v = qa (1-u) + qb u, F' = beta kappa / v
+      // Next to a zero-curvature end v cancels to noise; there kappa / v = |kappa|^(1 + alpha)
+      // (as |v| = |kappa|^(-alpha)) keeps full precision.
+      double f;
+      if (law.zero_end) {
+        f = (kappa == 0.0) ? 0.0 : pb.beta * std::pow(std::abs(kappa), 1.0 + pb.alpha);
+      } else {
+        const double v = law.qa * u1 + law.qb * u;
+        f = (v == 0.0) ? 0.0 : pb.beta * kappa / v;
+      }
+      da = f * u1;
+      db = f * u;
+    } else if (pb.alpha == 0.0) {  // kappa = sigma exp(ya (1-u) + yb u)
+      da = kappa * u1;
+      db = kappa * u;
+    } else if (law.log_r <= 0.0) {  // kappa = sigma v^(-1/alpha): dk/dya = kappa (1-u) qa / v
+      const double r = std::exp(law.log_r), den = u1 + r * u;
+      da = kappa * u1 / den;
+      db = kappa * u * r / den;
+    } else {
+      const double ir = std::exp(-law.log_r), den = u1 * ir + u;
+      da = kappa * u1 * ir / den;
+      db = kappa * u / den;
+    }
+    // y1 is the end of piece 0 and the start of piece 1; y2 likewise for pieces 1, 2.
+    f1[k] = dsdt * ((j == 0) ? db : (j == 1 ? da : 0.0));
+    f2[k] = dsdt * ((j == 1) ? db : (j == 2 ? da : 0.0));
+  }
+  // d theta / d y_j at the nodes by the collocation matrix (the integrand in t is
+  // smooth even on a substituted panel, where d kappa / d y is singular in s).
+  double tx = 0.0, ty = 0.0, t1 = 0.0, t2 = 0.0;
+  for (int k = 0; k < N; ++k) {
+    tx += w[k] * c[k];
+    ty += w[k] * sn[k];
+    t1 += rule.weight[k] * f1[k];
+    t2 += rule.weight[k] * f2[k];
+  }
+  const double reversed = p.from_hi ? -1.0 : 1.0;
+  const double base1 = sums.g[0] + (p.from_hi ? t1 : 0.0), base2 = sums.g[1] + (p.from_hi ? t2 : 0.0);
+  for (int k = 0; k < N; ++k) {
+    double i1 = 0.0, i2 = 0.0;
+    for (int m = 0; m < N; ++m) {
+      i1 += rule.integral[k][m] * f1[m];
+      i2 += rule.integral[k][m] * f2[m];
+    }
+    const Vec2 wt = w[k] * Vec2(-sn[k], c[k]);  // w i exp(i theta)
+    sums.d_log_length += (th[k] - pb.phi0) * wt;
+    sums.d_y[0] += (base1 + reversed * i1) * wt;
+    sums.d_y[1] += (base2 + reversed * i2) * wt;
+  }
+  sums.g[0] += t1;
+  sums.g[1] += t2;
+  sums.pos += Vec2(tx, ty);
+}
+
+/// The fast model: residual and Jacobian on fixed Gauss-Legendre panels.
+Evaluation evaluate(const Problem& pb, const Vars& x, Workspace& ws) {
+  Evaluation ev;
+  if (!buildParts(pb, x, ws.parts)) return ev;
+  const double length = std::exp(x[0]);
+  const std::array<double, 4> y = {pb.y0, x[1], x[2], pb.y3};
+  Sums sums;
   for (const Part& part : ws.parts) {
     const LaSegment& seg = part.seg;
-    const int j = part.piece;
-    const double ell = kPieceFraction[j] * length;
-    const double qa = y[j], qb = y[j + 1];
-    // alpha > 0: q_b / q_a = exp(-alpha (y_b - y_a)), kept as r <= 1 or 1/r < 1.
-    const double log_r = -pb.alpha * (qb - qa);
-    const bool zero_end = seg.kappaStart() == 0.0 || seg.kappaEnd() == 0.0;
+    PartLaw law;
+    law.piece = part.piece;
+    law.ell = kPieceFraction[part.piece] * length;
+    law.s_in_piece = part.s_in_piece;
+    law.qa = y[part.piece];
+    law.qb = y[part.piece + 1];
+    law.log_r = -pb.alpha * (law.qb - law.qa);
+    law.zero_end = seg.kappaStart() == 0.0 || seg.kappaEnd() == 0.0;
     layoutPanels(pb, seg, ws.panels);
     for (const Panel& p : ws.panels) {
-      const double h = p.hi - p.lo;
-      for (int k = 0; k < kNodes; ++k) {
-        const double t = rule.node[k];
-        double s, ds;
-        if (p.power == 1) {
-          s = p.from_hi ? p.hi - h * t : p.lo + h * t;
-          ds = h;
-        } else {
-          const double tp = std::pow(t, p.power - 1);
-          s = p.from_hi ? p.hi - h * tp * t : p.lo + h * tp * t;
-          ds = h * p.power * tp;
-        }
-        th[k] = seg.theta(s);
-        const double kappa = seg.kappa(s);
-        c[k] = std::cos(th[k]);
-        sn[k] = std::sin(th[k]);
-        w[k] = rule.weight[k] * ds;
-        // d kappa / d y at the piece's start (da) and end (db); u = s / ell in the piece.
-        const double u = (part.s_in_piece + s) / ell, u1 = 1.0 - u;
-        if (pb.signed_power) {  // kappa = F(v), v = qa (1-u) + qb u, F' = beta kappa / v
-          // Next to a zero-curvature end v cancels to noise; there kappa / v = |kappa|^(1 + alpha)
-          // (as |v| = |kappa|^(-alpha)) keeps full precision.
-          double f;
-          if (zero_end) {
-            f = (kappa == 0.0) ? 0.0 : pb.beta * std::pow(std::abs(kappa), 1.0 + pb.alpha);
-          } else {
-            const double v = qa * u1 + qb * u;
-            f = (v == 0.0) ? 0.0 : pb.beta * kappa / v;
-          }
-          da[k] = f * u1;
-          db[k] = f * u;
-        } else if (pb.alpha == 0.0) {  // kappa = sigma exp(ya (1-u) + yb u)
-          da[k] = kappa * u1;
-          db[k] = kappa * u;
-        } else {  // kappa = sigma v^(-1/alpha), q = exp(-alpha y): dk/dya = kappa (1-u) qa / v
-          if (log_r <= 0.0) {
-            const double r = std::exp(log_r), den = u1 + r * u;
-            da[k] = kappa * u1 / den;
-            db[k] = kappa * u * r / den;
-          } else {
-            const double ir = std::exp(-log_r), den = u1 * ir + u;
-            da[k] = kappa * u1 * ir / den;
-            db[k] = kappa * u / den;
-          }
-        }
-        // Columns: y1 is the end of piece 0 and the start of piece 1; y2 likewise.
-      }
-      // d theta / d y_j at the nodes by the collocation matrix (the integrand in t is
-      // smooth even on a substituted panel, where d kappa / d y is singular in s).
-      double tx = 0.0, ty = 0.0, t1 = 0.0, t2 = 0.0;
-      std::array<double, kNodes> f1, f2;
-      for (int k = 0; k < kNodes; ++k) {
-        const double dsdt = w[k] / rule.weight[k];
-        f1[k] = dsdt * ((j == 0) ? db[k] : (j == 1 ? da[k] : 0.0));
-        f2[k] = dsdt * ((j == 1) ? db[k] : (j == 2 ? da[k] : 0.0));
-        tx += w[k] * c[k];
-        ty += w[k] * sn[k];
-        t1 += rule.weight[k] * f1[k];
-        t2 += rule.weight[k] * f2[k];
-      }
-      for (int k = 0; k < kNodes; ++k) {
-        double i1 = 0.0, i2 = 0.0;
-        for (int m = 0; m < kNodes; ++m) {
-          i1 += rule.integral[k][m] * f1[m];
-          i2 += rule.integral[k][m] * f2[m];
-        }
-        const double reversed = p.from_hi ? -1.0 : 1.0;
-        const double dth1 = g[0] + (p.from_hi ? t1 : 0.0) + reversed * i1;
-        const double dth2 = g[1] + (p.from_hi ? t2 : 0.0) + reversed * i2;
-        const Vec2 wt = w[k] * Vec2(-sn[k], c[k]);  // w i exp(i theta)
-        d_log_length += (th[k] - pb.phi0) * wt;
-        d_y[0] += dth1 * wt;
-        d_y[1] += dth2 * wt;
-      }
-      g[0] += t1;
-      g[1] += t2;
-      pos += Vec2(tx, ty);
+      if (p.nodes == kEasyNodes) accumulatePanel<kEasyNodes>(pb, seg, law, p, sums);
+      else accumulatePanel<kNodes>(pb, seg, law, p, sums);
     }
   }
   const Part& last = ws.parts.back();
   const double total_turning = last.seg.theta(last.seg.length()) - pb.phi0;
-  const Vec2 end = pos;
-  const Vec2 dE_dlog = end + d_log_length;
-  const Vec2& dE_dy1 = d_y[0];
-  const Vec2& dE_dy2 = d_y[1];
+  const Vec2 end = sums.pos;
+  const Vec2 dE_dlog = end + sums.d_log_length;
   ev.residual = {end.x() - 1.0, end.y(), total_turning - pb.turning};
-  ev.jacobian << dE_dlog.x(), dE_dy1.x(), dE_dy2.x(),  //
-      dE_dlog.y(), dE_dy1.y(), dE_dy2.y(),             //
-      total_turning, g[0], g[1];
+  ev.jacobian << dE_dlog.x(), sums.d_y[0].x(), sums.d_y[1].x(),  //
+      dE_dlog.y(), sums.d_y[0].y(), sums.d_y[1].y(),             //
+      total_turning, sums.g[0], sums.g[1];
   ev.ok = ev.residual.allFinite() && ev.jacobian.allFinite();
   return ev;
 }
@@ -420,6 +471,7 @@ Attempt newtonSolve(const Problem& pb, Vars x, const TripleLaHermiteOptions& opt
   }
   double norm = ev.residual.lpNorm<Eigen::Infinity>();
   const double target = 0.1 * opt.tolerance;
+  int damped_steps = 0;
   while (norm > target) {
     if (at.iterations >= opt.max_iterations) {
       at.why = "iteration limit of the Newton iteration";
@@ -444,18 +496,32 @@ Attempt newtonSolve(const Problem& pb, Vars x, const TripleLaHermiteOptions& opt
     }
     bool accepted = false;
     double t = scale;
+    if (t < 0.125) ++damped_steps;
     for (int halving = 0; halving < kMaxHalvings; ++halving, t *= 0.5) {
       const Vars x_try = x + t * dx;
       Evaluation ev_try = evaluate(pb, x_try, ws);
       if (!ev_try.ok) continue;
       const double norm_try = ev_try.residual.lpNorm<Eigen::Infinity>();
       if (norm_try < (1.0 - 1e-4 * t) * norm) {
+        if (std::abs(pb.kappaOf(x_try[1])) > kMaxNormalizedKappa || std::abs(pb.kappaOf(x_try[2])) > kMaxNormalizedKappa ||
+            x_try[0] > std::log(kMaxNormalizedLength)) {
+          at.why = "a joint curvature or the length diverges";
+          at.residual = norm_try;
+          return at;
+        }
         x = x_try;
         ev = ev_try;
         norm = norm_try;
         accepted = true;
+        if (t >= 0.125) damped_steps = 0;
+        else if (t < scale) ++damped_steps;
         break;
       }
+    }
+    if (accepted && damped_steps >= kMaxDampedSteps) {
+      at.why = "Newton stalls (damped steps only)";
+      at.residual = norm;
+      return at;
     }
     if (!accepted) {
       if (norm <= kFastNoiseFloor) break;  // rounding floor of the fast model: let verification decide
