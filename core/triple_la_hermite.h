@@ -61,7 +61,7 @@ namespace la {
 
 struct TripleLaHermiteOptions {
   double tolerance = 1e-12;  // end position miss relative to |P1 - P0|; angle miss in radians
-  int max_iterations = 50;
+  int max_iterations = 50;  // per Newton run; a failing solve makes a few (other starts, continuation)
 };
 
 struct TripleLaHermiteSolve {
