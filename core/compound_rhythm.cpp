@@ -33,6 +33,9 @@ constexpr double kMaxLogRadiusRatio = 30.0;
 // and y's own rounding (1e-16) cannot push it to 0. The shapes left out differ from the
 // limit (an inflection end for alpha1 < 0) by ~kMinBase^(alpha1/(alpha1-1)) in position.
 constexpr double kMinBase = 1e-12;
+// Below this base the rounding of m moves m1 by more than 1e-16 / kSwitchBase = 1e-12, so
+// the solve switches its unknown to m1 (see StandardCompound::Variable).
+constexpr double kSwitchBase = 1e-4;
 // exp() overflows past ~709; the laws use exp(alpha m) and exp((alpha-1) m).
 constexpr double kMaxExponent = 600.0;
 // Points closer than this, relative to the polygon's size, coincide (scale-free).
@@ -109,13 +112,14 @@ PieceIntegral integratePiece(const PieceLaw& law) {
   for (int panel = 0; x < 1.0; ++panel) {
     const double allowed = maxPanelWidth(law, law.distance + x);
     const double width = (panel + 1 >= kMaxPanels || !(allowed > 0.0)) ? 1.0 - x : std::min(1.0 - x, allowed);
-    const double lo = law.branch_at_end ? 1.0 - x - width : x;
-    const double hi = law.branch_at_end ? 1.0 - x : x + width;
+    const double near = x;
     x = (width >= 1.0 - x) ? 1.0 : x + width;
-    const double w = hi - lo;
     for (int k = 0; k < kPanelNodes; ++k) {
-      const double tau = lo + w * rule.node[k];
-      const double tau_c = (1.0 - hi) + w * rule.node[kPanelNodes - 1 - k];  // 1 - tau, exactly
+      // Distance from the near end, exact to rounding relative to itself: near a branch
+      // point past tau = 1 the base is formed from 1 - tau, never from 1 - (1 - (1 - tau)).
+      const double d = near + width * rule.node[k];
+      const double tau = law.branch_at_end ? 1.0 - d : d;
+      const double tau_c = law.branch_at_end ? d : 1.0 - d;  // 1 - tau
       double rho, drho;
       if (law.unit_alpha) {
         rho = std::exp(law.m * tau);
@@ -129,7 +133,7 @@ PieceIntegral integratePiece(const PieceLaw& law) {
       }
       const double t = law.phi * tau;
       const double c = std::cos(t), s = std::sin(t);
-      const double wk = w * rule.weight[k];
+      const double wk = width * rule.weight[k];
       ex += wk * rho * c;
       ey += wk * rho * s;
       dx += wk * drho * c;
@@ -171,23 +175,39 @@ class StandardCompound {
     return alpha0_ < 1.0 ? -INFINITY : INFINITY;
   }
 
+  /// The unknown of the shape solve: m (well conditioned everywhere except where piece
+  /// 1 nears the end of its domain, 1 + y -> 0, and m1 reacts to the last bits of m),
+  /// or m1 (the same, the other way round).
+  enum class Variable { kFirst, kSecond };
   struct Eval {
-    Vec2 end = Vec2::Zero();    // E(m)
-    Vec2 d_end = Vec2::Zero();  // dE/dm
-    double m1 = 0.0;
+    Vec2 end = Vec2::Zero();    // E
+    Vec2 d_end = Vec2::Zero();  // dE/d(variable)
+    double m = 0.0, m1 = 0.0;
+    double base1 = 1.0;  // (rho_end/rho_c)^(alpha1-1) = 1 + (alpha1-1) r phi1; small near piece 1's limit
   };
-  Eval eval(double m) const {
-    const PieceIntegral i0 = integratePiece(makeLaw(alpha0_, phi0_, m));
-    const double r = jointRate(m);
-    const double dr_dm = std::exp((1.0 - alpha0_) * m) / phi0_;
+  Eval eval(double w, Variable variable) const {
     Eval out;
-    out.m1 = secondLogRatio(r);
-    const double dm1_dr = phi1_ / (1.0 + (alpha1_ - 1.0) * r * phi1_);
+    double chain;  // dm1/dm (kFirst) or dm/dm1 (kSecond)
+    if (variable == Variable::kFirst) {
+      out.m = w;
+      const double r = jointRate(w);
+      out.m1 = secondLogRatio(r);
+      out.base1 = 1.0 + (alpha1_ - 1.0) * r * phi1_;
+      chain = phi1_ / out.base1 * std::exp((1.0 - alpha0_) * w) / phi0_;
+    } else {
+      out.m1 = w;
+      const double r = expm1Over(alpha1_ - 1.0, w) / phi1_;
+      out.m = firstLogRatioFor(w);
+      out.base1 = std::exp((alpha1_ - 1.0) * w);
+      chain = phi0_ / (1.0 + (1.0 - alpha0_) * r * phi0_) * out.base1 / phi1_;
+    }
+    const PieceIntegral i0 = integratePiece(makeLaw(alpha0_, phi0_, out.m));
     const PieceIntegral i1 = integratePiece(makeLaw(alpha1_, phi1_, out.m1));
-    const double rho_c = std::exp(m);
+    const double rho_c = std::exp(out.m);
     const Vec2 e1 = rotate(i1.end, phi0_), de1 = rotate(i1.d_end, phi0_);
     out.end = i0.end + rho_c * e1;
-    out.d_end = i0.d_end + rho_c * (e1 + de1 * (dm1_dr * dr_dm));
+    const Vec2 d_m = i0.d_end + rho_c * e1, d_m1 = rho_c * de1;  // partial derivatives
+    out.d_end = variable == Variable::kFirst ? Vec2(d_m + chain * d_m1) : Vec2(chain * d_m + d_m1);
     return out;
   }
 
@@ -291,17 +311,23 @@ CompoundRhythmSolve solveCompoundRhythm(double alpha0, double alpha1, const std:
   const double m_hi = std::min(m0_max, standard.firstLogRatioFor(m1_hi));
   if (!(m_lo < m_hi))
     return fail(SolveStatus::kInfeasible, "no admissible shape: the radius ratio of a piece would exceed e^30");
-  auto f = [&](double m) {
-    const StandardCompound::Eval e = standard.eval(m);
-    return std::pair<double, double>(chordAngle(e.end) - target_angle, cross(e.end, e.d_end) / e.end.squaredNorm());
-  };
   RootOptions root_options;
   root_options.f_tol = kNewtonShareOfTolerance * options.tolerance;
   root_options.max_iterations = options.max_iterations;
-  const RootResult root = solveMonotone(f, m_lo, m_hi, 0.0, /*increasing=*/true, root_options);
+  using Variable = StandardCompound::Variable;
+  auto solveIn = [&](Variable variable, double lo, double hi, double start) {
+    auto f = [&](double w) {
+      const StandardCompound::Eval e = standard.eval(w, variable);
+      return std::pair<double, double>(chordAngle(e.end) - target_angle, cross(e.end, e.d_end) / e.end.squaredNorm());
+    };
+    return solveMonotone(f, lo, hi, start, /*increasing=*/true, root_options);
+  };
+  RootResult root = solveIn(Variable::kFirst, m_lo, m_hi, 0.0);
+  Variable variable = Variable::kFirst;
   report.iterations = root.report.iterations;
   if (root.report.status == SolveStatus::kInfeasible) {
-    const double lo = chordAngle(standard.eval(m_lo).end), hi = chordAngle(standard.eval(m_hi).end);
+    const double lo = chordAngle(standard.eval(m_lo, Variable::kFirst).end);
+    const double hi = chordAngle(standard.eval(m_hi, Variable::kFirst).end);
     auto chord = [&](double a) { return fmt(degrees(a + 0.5 * theta_d)); };
     return fail(SolveStatus::kInfeasible,
                 "Q3 is out of reach for alpha0 = " + fmt(alpha0) + ", alpha1 = " + fmt(alpha1) + " and joint " +
@@ -309,14 +335,28 @@ CompoundRhythmSolve solveCompoundRhythm(double alpha0, double alpha1, const std:
                     ": the chord Q0Q3 must make an angle between " + chord(lo) + " and " + chord(hi) +
                     " degrees with Q1-Q0 (it makes " + chord(target_angle) + ")");
   }
+  if (std::isfinite(root.x)) {
+    // Near piece 1's limit (an inflection or cusp end) m1 reacts to the rounding of m:
+    // polish in m1 instead, from where the first solve ended.
+    const StandardCompound::Eval at = standard.eval(root.x, Variable::kFirst);
+    if (at.base1 < kSwitchBase) {
+      const double w_lo = standard.eval(m_lo, Variable::kFirst).m1, w_hi = standard.eval(m_hi, Variable::kFirst).m1;
+      const RootResult polished = solveIn(Variable::kSecond, w_lo, w_hi, std::clamp(at.m1, w_lo, w_hi));
+      report.iterations += polished.report.iterations;
+      if (polished.report.status == SolveStatus::kConverged || root.report.status != SolveStatus::kConverged) {
+        root = polished;
+        variable = Variable::kSecond;
+      }
+    }
+  }
   if (root.report.status != SolveStatus::kConverged) {
     report.residual = std::abs(root.value);
     return fail(root.report.status, "shape solve: " + root.report.message);
   }
 
   // ---- The curve in the world frame, and the check of its end on the real segments.
-  const double m = root.x;
-  const StandardCompound::Eval e = standard.eval(m);
+  const StandardCompound::Eval e = standard.eval(root.x, variable);
+  const double m = e.m;
   const double chord = chord_vec.norm();
   const double rho0 = chord / e.end.norm();
   const double rho_c = rho0 * std::exp(m), rho1 = rho_c * std::exp(e.m1);

@@ -302,6 +302,28 @@ TEST(CompoundRhythm, SpiralTurningMoreThanPi) {
   expectSameCurve(c, *s.curve, 1e-8, "spiral");
 }
 
+TEST(CompoundRhythm, NearAnInflectionEnd) {
+  // Piece 1 ends with a curvature 1e-7 of the joint's (alpha1 < 0 allows an inflection
+  // there in the limit). Found by a random search: solving in m alone missed Q3 by 6e-9
+  // of the chord, as m1 then reacts to the last bits of m; the solve switches to m1.
+  const std::array<Vec2, 4> q{Vec2(0, 0), Vec2(0.25770575754635949, 0), Vec2(0.65448748693675862, 0.45335603655573931),
+                              Vec2(1.7056927854899138, 1.9986922405483556)};
+  const CompoundRhythmSolve s = solveCompoundRhythm(-0.7872550794203601, -0.082669332043085575, q);
+  ASSERT_TRUE(s.report.usable()) << s.report.message;
+  EXPECT_LE(s.report.residual, 1e-12);
+  const LaSegment& p1 = s.curve->pieces[1].segment;
+  EXPECT_LT(std::abs(p1.kappaEnd() / p1.kappaStart()), 1e-6) << "the case is near the inflection limit";
+  expectG3Joint(*s.curve, "near inflection");
+  expectEndsMet(*s.curve, q, "near inflection");
+  // And a round trip there: radius ratio e^16 on piece 1.
+  const Built c = buildCompound(-0.8, -0.08, 1.0, 0.5, 0.8, 16.0, Vec2(1, 2), 0.3, -1.0);
+  const auto qc = polygonOf(c, 0.5, 0.5);
+  ASSERT_TRUE(qc.has_value());
+  const CompoundRhythmSolve t = solveCompoundRhythm(-0.8, -0.08, *qc, c.piece0.theta(c.piece0.length()));
+  ASSERT_TRUE(t.report.usable()) << t.report.message;
+  expectSameCurve(c, *t.curve, 1e-8, "near inflection round trip");
+}
+
 TEST(CompoundRhythm, BadInputIsReported) {
   const std::array<Vec2, 4> q{Vec2(0, 0), Vec2(2, 0), Vec2(3, 0.7), Vec2(3.2, 1.4)};
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
