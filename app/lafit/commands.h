@@ -10,5 +10,6 @@ namespace la::cli {
 int segmentCommand(const std::vector<std::string>& args);
 int fitCommand(const std::vector<std::string>& args);
 int batchCommand(const std::vector<std::string>& args);
+int compoundCommand(const std::vector<std::string>& args);
 
 }  // namespace la::cli

@@ -19,6 +19,7 @@ commands:
   fit       fair the strokes of a point, stroke-JSON or SVG file into G2 curves
   batch     fit every input file of a folder, on all cores
   segment   one LA segment from a control triangle (3-point or inflection-end construction)
+  compound  a compound-rhythm curve: two LA segments joined G3, from four control points
 
 `lafit COMMAND --help` explains a command.
 )";
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
     if (command == "fit") return la::cli::fitCommand(args);
     if (command == "batch") return la::cli::batchCommand(args);
     if (command == "segment") return la::cli::segmentCommand(args);
+    if (command == "compound") return la::cli::compoundCommand(args);
     std::cerr << "lafit: unknown command '" << command << "'\n" << kHelp;
     return 2;
   } catch (const la::cli::UsageError& e) {
