@@ -370,8 +370,12 @@ CompoundRhythmSolve solveCompoundRhythm(double alpha0, double alpha1, const std:
                            turn_sign / rho_c, turn_sign / rho1);
     curve.pieces.push_back({piece0, false});
     curve.pieces.push_back({piece1, false});
-  } catch (const std::invalid_argument& error) {  // parameters out of LaSegment's range
-    return fail(SolveStatus::kInfeasible, std::string("the solved pieces are not LA segments: ") + error.what());
+  } catch (const std::invalid_argument& error) {
+    // LaSegment's own range is narrower than the solve's for extreme alphas (e.g. |alpha|
+    // ~ 1e-300, where 1/alpha overflows); the input, not the polygon, is at fault.
+    return fail(SolveStatus::kBadInput,
+                std::string("the solved pieces cannot be represented as LA segments (alpha out of range?): ") +
+                    error.what());
   }
   const Vec2 end = curve.pieces[1].segment.end(segment_tolerance);
   report.residual = (end - q[3]).norm() / chord;

@@ -30,9 +30,11 @@
 // with m. The seed's 2D Newton on (c0, d0) is this problem: scaling a curve by k maps
 // (c_i, d_i) to (k^(alpha_i-1) c_i, k^alpha_i d_i), so one direction of (c0, d0) is pure
 // scale. We therefore solve the chord angle of Q3 at Q0 (a function of m alone,
-// monotone increasing: a larger m moves weight to the later, more turned, part) by
+// increasing: a larger m moves weight to the later, more turned, part; we found no
+// exception in the tests' sweeps, and the bracketed solve needs only a sign change) by
 // Newton kept inside a bracket (core/root_finding.h), then take the scale from the
-// chord length. This deviates from the seed's procedure, not its result; it replaces
+// chord length. Where piece 1 nears the end of its domain (1 + (alpha1-1) r phi1 -> 0)
+// m1 reacts to the rounding of m, so the solve is polished with m1 as the unknown. This deviates from the seed's procedure, not its result; it replaces
 // the seed's initial guess (a 3-point segment to the centroid) and its step halving
 // for the positivity constraints (12)-(13), which hold by construction here: m and m1
 // are limited to |log radius ratio| <= 30 per piece, so c s + d stays positive.
@@ -75,9 +77,11 @@ struct CompoundRhythmSolve {
 /// 2 pi), and the joint direction must lie strictly inside the turning, from Q1 - Q0 to
 /// Q3 - Q2 (taken modulo 2 pi). report.status: kConverged (residual = end-point miss /
 /// |Q3 - Q0| of the built curve, iterations = Newton steps), kBadInput (NaN, infinite
-/// alpha, coincident points, a straight polygon, a corner of +-pi), kInfeasible (an
-/// S-shaped polygon, a joint direction outside the turning, or Q3 outside the reachable
-/// chord angles, which the message gives), kIterationLimit.
+/// alpha, coincident points, a straight polygon, a corner of +-pi, an alpha LaSegment
+/// cannot represent), kInfeasible (an S-shaped polygon, a joint direction outside the
+/// turning, or Q3 outside the reachable chord angles, which the message gives),
+/// kIterationLimit (out of iterations, or the built curve misses Q3 by more than the
+/// tolerance: seen only for |alpha| ~ 1e-9, where LaSegment's evaluation loses digits).
 CompoundRhythmSolve solveCompoundRhythm(double alpha0, double alpha1, const std::array<Vec2, 4>& q,
                                         double joint_theta = std::numeric_limits<double>::quiet_NaN(),
                                         const CompoundRhythmOptions& options = {});

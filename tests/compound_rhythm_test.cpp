@@ -327,7 +327,6 @@ TEST(CompoundRhythm, NearAnInflectionEnd) {
 TEST(CompoundRhythm, BadInputIsReported) {
   const std::array<Vec2, 4> q{Vec2(0, 0), Vec2(2, 0), Vec2(3, 0.7), Vec2(3.2, 1.4)};
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  auto status = [](const CompoundRhythmSolve& s) { return s.report.status; };
   auto expectFail = [](const CompoundRhythmSolve& s, SolveStatus want, const std::string& what) {
     EXPECT_EQ(s.report.status, want) << what << ": " << s.report.message;
     EXPECT_FALSE(s.curve.has_value()) << what;
@@ -366,7 +365,6 @@ TEST(CompoundRhythm, BadInputIsReported) {
   CompoundRhythmOptions short_options;
   short_options.max_iterations = 1;
   expectFail(solveCompoundRhythm(-1.0, 2.0, q, nan, short_options), SolveStatus::kIterationLimit, "1 iteration");
-  (void)status;
 }
 
 TEST(CompoundRhythm, ConvergesOrReportsOverAGridOfPolygons) {
