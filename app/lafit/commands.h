@@ -11,5 +11,6 @@ int segmentCommand(const std::vector<std::string>& args);
 int fitCommand(const std::vector<std::string>& args);
 int batchCommand(const std::vector<std::string>& args);
 int hermiteCommand(const std::vector<std::string>& args);
+int compoundCommand(const std::vector<std::string>& args);
 
 }  // namespace la::cli

@@ -20,6 +20,7 @@ commands:
   batch     fit every input file of a folder, on all cores
   segment   one LA segment from a control triangle (3-point or inflection-end construction)
   hermite   triple-LA G2 Hermite curve between two ends (point, tangent angle, curvature)
+  compound  a compound-rhythm curve: two LA segments joined G3, from four control points
 
 `lafit COMMAND --help` explains a command.
 )";
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     if (command == "batch") return la::cli::batchCommand(args);
     if (command == "segment") return la::cli::segmentCommand(args);
     if (command == "hermite") return la::cli::hermiteCommand(args);
+    if (command == "compound") return la::cli::compoundCommand(args);
     std::cerr << "lafit: unknown command '" << command << "'\n" << kHelp;
     return 2;
   } catch (const la::cli::UsageError& e) {
