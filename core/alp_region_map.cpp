@@ -112,7 +112,7 @@ std::string alpRegionMapToSvg(const AlpRegionMap& map) {
   const AlpRegionRequest& r = map.request;
   const int size = static_cast<int>(map.kappa_s.size());
   // Plot area in pixels: 600 x 600 with room for the axes, labels and legend.
-  constexpr double kPlot = 600.0, kLeft = 70.0, kTop = 40.0, kLegend = 230.0;
+  constexpr double kPlot = 600.0, kLeft = 70.0, kTop = 40.0, kLegend = 340.0;
   const double cell = kPlot / size;
   const double range = r.kappa_max - r.kappa_min;
   auto x = [&](double k) { return kLeft + (k - r.kappa_min) / range * kPlot; };

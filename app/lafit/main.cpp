@@ -19,6 +19,8 @@ commands:
   fit       fair the strokes of a point, stroke-JSON or SVG file into G2 curves
   batch     fit every input file of a folder, on all cores
   segment   one LA segment from a control triangle (3-point or inflection-end construction)
+  alp       one ALP curve (explicit Bezier curvature function) by G1/G2 Hermite interpolation
+  alp-region  the end curvatures for which a G2 ALP curve is monotone without inflection
 
 `lafit COMMAND --help` explains a command.
 )";
@@ -37,6 +39,8 @@ int main(int argc, char** argv) {
     if (command == "fit") return la::cli::fitCommand(args);
     if (command == "batch") return la::cli::batchCommand(args);
     if (command == "segment") return la::cli::segmentCommand(args);
+    if (command == "alp") return la::cli::alpCommand(args);
+    if (command == "alp-region") return la::cli::alpRegionCommand(args);
     std::cerr << "lafit: unknown command '" << command << "'\n" << kHelp;
     return 2;
   } catch (const la::cli::UsageError& e) {
