@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <numbers>
 #include <string>
 
 #include "core/quadrature.h"
@@ -42,6 +43,66 @@ void refinePanels(const F& f, double a, double b, const V& whole, double tol_den
   }
   refinePanels(f, a, m, left, tol_density, depth + 1, breaks, values);
   refinePanels(f, m, b, right, tol_density, depth + 1, breaks, values);
+}
+
+// Rational turning: on each panel the curvature K_R is interpolated at kChebPoints
+// Chebyshev-Lobatto points and its Chebyshev series integrated term by term, so theta
+// costs one Clenshaw sum. A panel is split until the last two coefficients are below
+// the tolerance (K_R is analytic on [0, 1]: its poles are off the real interval, so
+// the coefficients fall geometrically and the tail bounds the error).
+constexpr int kChebPoints = 24;
+
+// Coefficients of the integral over [a, x(t)] of f on [a, b] in t in [-1, 1] (degree
+// kChebPoints), times the half width; `tail` gets the size of f's last two coefficients.
+template <class F>
+std::vector<double> chebyshevIntegral(const F& f, double a, double b, double& tail) {
+  constexpr int N = kChebPoints;
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  double values[N];
+  for (int j = 0; j < N; ++j) values[j] = f(mid + half * std::cos(std::numbers::pi * j / (N - 1)));
+  double c[N + 2] = {};
+  for (int k = 0; k < N; ++k) {
+    double sum = 0.0;
+    for (int j = 0; j < N; ++j) {
+      const double w = (j == 0 || j == N - 1) ? 0.5 : 1.0;
+      sum += w * values[j] * std::cos(std::numbers::pi * j * k / (N - 1));
+    }
+    c[k] = sum * 2.0 / (N - 1) * ((k == 0 || k == N - 1) ? 0.5 : 1.0);
+  }
+  tail = std::max(std::abs(c[N - 1]), std::abs(c[N - 2]));
+  std::vector<double> C(N + 1, 0.0);
+  C[1] = c[0] - 0.5 * c[2];
+  for (int k = 2; k <= N; ++k) C[k] = (c[k - 1] - c[k + 1]) / (2.0 * k);
+  double at_minus_one = 0.0;
+  for (int k = 1; k <= N; ++k) at_minus_one += (k % 2 ? -1.0 : 1.0) * C[k];
+  C[0] = -at_minus_one;
+  for (double& v : C) v *= half;
+  return C;
+}
+
+double clenshaw(const double* C, int n, double x) {
+  double b1 = 0.0, b2 = 0.0;
+  for (int k = n; k >= 1; --k) {
+    const double b0 = C[k] + 2.0 * x * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return C[0] + x * b1 - b2;
+}
+
+template <class F>
+void refineChebyshev(const F& f, double a, double b, double tol, int depth, std::vector<double>& breaks,
+                     std::vector<double>& coefficients) {
+  double tail = 0.0;
+  std::vector<double> C = chebyshevIntegral(f, a, b, tail);
+  if (tail <= tol || depth >= kMaxDepth || breaks.size() >= kMaxPanels) {
+    breaks.push_back(b);
+    coefficients.insert(coefficients.end(), C.begin(), C.end());
+    return;
+  }
+  const double m = 0.5 * (a + b);
+  refineChebyshev(f, a, m, tol, depth + 1, breaks, coefficients);
+  refineChebyshev(f, m, b, tol, depth + 1, breaks, coefficients);
 }
 
 std::size_t panelIndex(const std::vector<double>& breaks, double tau) {
@@ -87,19 +148,17 @@ AlpCurve::AlpCurve(std::vector<double> control_kappa, std::vector<double> weight
   const int initial = std::clamp(static_cast<int>(std::ceil(bound / kInitialPanelTurning)), 1, kMaxInitialPanels);
 
   if (isRational()) {
-    // Turning table: integral of K_R from panel to panel (theta to ~1e-14 of
+    // Turning table: Chebyshev panels of the integral of K_R (theta to ~1e-14 of
     // L max|kappa_i|).
     const auto f = [this](double tau) { return curvatureAt(tau); };
     const double tol = kTurningTolerance * std::max(max_control, 1e-300);
     theta_breaks_ = {0.0};
-    std::vector<double> pieces;
-    for (int i = 0; i < initial; ++i) {
-      const double a = double(i) / initial, b = double(i + 1) / initial;
-      refinePanels(f, a, b, integrateFixed<20>(f, a, b), tol, 0, theta_breaks_, pieces);
-    }
+    for (int i = 0; i < initial; ++i)
+      refineChebyshev(f, double(i) / initial, double(i + 1) / initial, tol, 0, theta_breaks_, theta_series_);
     theta_breaks_.back() = 1.0;
     unit_turning_ = {0.0};
-    for (double v : pieces) unit_turning_.push_back(unit_turning_.back() + v);
+    for (std::size_t k = 0; k + 1 < theta_breaks_.size(); ++k)
+      unit_turning_.push_back(unit_turning_.back() + clenshaw(&theta_series_[k * (kChebPoints + 1)], kChebPoints, 1.0));
   } else {
     turning_poly_ = bernsteinIntegral(control_kappa_);
   }
@@ -155,9 +214,10 @@ double AlpCurve::unitTurningAt(double tau) const {
   tau = std::clamp(tau, 0.0, 1.0);
   if (!isRational()) return evaluateBernstein(turning_poly_, tau);
   const std::size_t k = panelIndex(theta_breaks_, tau);
-  const double a = theta_breaks_[k];
+  const double a = theta_breaks_[k], b = theta_breaks_[k + 1];
   if (tau == a) return unit_turning_[k];
-  return unit_turning_[k] + integrateFixed<20>([this](double t) { return curvatureAt(t); }, a, tau);
+  const double x = std::clamp((2.0 * tau - a - b) / (b - a), -1.0, 1.0);
+  return unit_turning_[k] + clenshaw(&theta_series_[k * (kChebPoints + 1)], kChebPoints, x);
 }
 
 double AlpCurve::kappa(double s) const { return curvatureAt(std::clamp(s / length_, 0.0, 1.0)); }

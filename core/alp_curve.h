@@ -12,8 +12,10 @@
 // makes theta_d = s_t * integral_0^1 K, its eq. 4 and seed 000 eq. 6.)
 // theta(s) = theta0 + integral_0^s kappa (seed 000 eq. 2). For the polynomial the
 // integral is a Bezier function of degree n + 1 (closed form, bernsteinIntegral),
-// theta_d = L sum kappa_i / (n + 1) (eq. 6). For the rational one it is computed by
-// Gauss-Legendre quadrature on panels fixed at construction (eq. 11 needs the same).
+// theta_d = L sum kappa_i / (n + 1) (eq. 6). For the rational one (eq. 11 needs the
+// same integral) it is a piecewise Chebyshev series built at construction: K_R
+// interpolated on panels until the series' tail is below 1e-14 max|kappa_i|, then
+// integrated term by term.
 // Positions P(s) = start + integral_0^s (cos theta, sin theta) (eq. 3) are computed
 // by adaptive Gauss-Legendre from a table of positions at panel boundaries, built
 // at construction to kTableRelativeTolerance.
@@ -104,6 +106,7 @@ class AlpCurve final : public ArcLengthCurve {
   BernsteinCoefficients turning_poly_;  // polynomial: integral of K, degree n + 1
   std::vector<double> theta_breaks_;    // rational: panels of the turning quadrature in tau
   std::vector<double> unit_turning_;    // rational: integral_0^{theta_breaks_k} K_R
+  std::vector<double> theta_series_;    // rational: per panel, Chebyshev series of the integral since its start
   std::vector<double> breaks_;          // panels of the position table in tau, 0 .. 1
   std::vector<Vec2> table_;             // position at each break
   Vec2 end_;
