@@ -70,7 +70,9 @@ TEST(AlpRegionMap, ContainsTheCircularArcAndExcludesTheFar) {
   // opposite-signed end curvatures of a C-shaped condition force a sign change
   const AlpSolve s = solveAlpRegionCell(smallRequest(), -1.0, 1.0);
   EXPECT_TRUE(s.report.usable()) << s.report.message;
-  if (s.report.usable()) EXPECT_TRUE(s.check.has_inflection);
+  if (s.report.usable()) {
+    EXPECT_TRUE(s.check.has_inflection);
+  }
 }
 
 TEST(AlpRegionMap, WritersDescribeTheMap) {
