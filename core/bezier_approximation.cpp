@@ -22,7 +22,7 @@ double distanceToBezier(const CubicBezier& b, const Vec2& p, double t0) {
   return (b.point(t) - p).norm();
 }
 
-void approximate(const LaSegment& seg, double s0, double s1, const Vec2& a, const Vec2& b,
+void approximate(const ArcLengthCurve& seg, double s0, double s1, const Vec2& a, const Vec2& b,
                  double tolerance, int depth, BezierApproximation& out) {
   const double h = s1 - s0;
   const double th0 = seg.theta(s0), th1 = seg.theta(s1);
@@ -58,11 +58,17 @@ Vec2 CubicBezier::derivative(double t) const {
 }
 
 BezierApproximation approximateWithBeziers(const LaSegment& segment, double tolerance) {
+  return approximateWithBeziers(LaSegmentView(segment), tolerance);
+}
+
+BezierApproximation approximateWithBeziers(const ArcLengthCurve& segment, double tolerance) {
   BezierApproximation out;
   // Start from pieces of at most a quarter turn: one cubic per quarter circle is the
-  // classic bound, and it keeps the handle formula away from tan's pole.
-  const int pieces = std::max(1, static_cast<int>(std::ceil(std::abs(segment.turning()) / (0.5 * std::numbers::pi))));
-  Vec2 a = segment.start();
+  // classic bound, and it keeps the handle formula away from tan's pole. (Equal
+  // pieces in s: for a curve with an inflection some get less, none more than the
+  // subdivision below fixes.)
+  const int pieces = std::max(1, static_cast<int>(std::ceil(segment.totalTurning() / (0.5 * std::numbers::pi))));
+  Vec2 a = segment.position(0.0, 1e-12);
   for (int i = 0; i < pieces; ++i) {
     const double s0 = segment.length() * i / pieces, s1 = segment.length() * (i + 1) / pieces;
     const Vec2 b = segment.position(s1, 1e-12);

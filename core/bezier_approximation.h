@@ -1,15 +1,17 @@
 #pragma once
-// Cubic Bezier approximation of LA segments, for SVG paths and DXF splines.
+// Cubic Bezier approximation of arc-length curves (LA segments, ALP curves), for SVG
+// paths and DXF splines.
 //
-// The segment is cut at arc lengths where the Bezier through the end points with
+// The curve is first cut into pieces of at most a quarter turn of total turning, then at arc lengths where the Bezier through the end points with
 // the end tangents matches the curve within the tolerance; each piece uses the
 // handle length of the best circular-arc cubic, (4/3) tan(dtheta/4) / dtheta times
 // the piece length, which is exact to O(h^6) for a circle and O(h^4) in general.
-// The error is measured, not assumed: the distance from points of the LA piece to
+// The error is measured, not assumed: the distance from points of the curve's piece to
 // the Bezier (by Newton projection) is checked at several arc lengths.
 
 #include <vector>
 
+#include "core/arc_length_curve.h"
 #include "core/la_segment.h"
 
 namespace la {
@@ -27,5 +29,9 @@ struct BezierApproximation {
 
 /// Beziers within `tolerance` (an absolute distance) of the segment.
 BezierApproximation approximateWithBeziers(const LaSegment& segment, double tolerance);
+
+/// Beziers within `tolerance` (an absolute distance) of any arc-length curve; for an
+/// LA segment the same as the overload above.
+BezierApproximation approximateWithBeziers(const ArcLengthCurve& curve, double tolerance);
 
 }  // namespace la

@@ -25,11 +25,12 @@ struct Box {
   bool empty() const { return !(lo.x() <= hi.x()); }
 };
 
-Box boxOf(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points) {
+Box boxOf(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points) {
   Box box;
-  for (const Curve& c : curves)
-    for (const CurvePiece& piece : c.pieces) {
-      const CurveSamples smp = piece.segment.sample(16);
+  for (const ExportCurve& c : curves)
+    for (const ExportPiece& piece : c.pieces) {
+      CurveSamples smp;
+      piece.curve->sample(16, smp);
       for (const Vec2& p : smp.point) box.add(p);
     }
   for (const auto& stroke : points)
@@ -37,26 +38,85 @@ Box boxOf(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>
   return box;
 }
 
-std::vector<CubicBezier> beziersOf(const Curve& curve, double tolerance) {
+std::vector<CubicBezier> beziersOf(const ExportCurve& curve, double tolerance) {
   std::vector<CubicBezier> out;
-  for (const CurvePiece& piece : curve.pieces) {
-    const BezierApproximation a = approximateWithBeziers(piece.segment, tolerance);
+  for (const ExportPiece& piece : curve.pieces) {
+    const BezierApproximation a = approximateWithBeziers(*piece.curve, tolerance);
     out.insert(out.end(), a.pieces.begin(), a.pieces.end());
   }
+  return out;
+}
+
+// The LA curves as export chains; `views` owns the adapters the chains point to.
+std::vector<ExportCurve> chainsOf(const std::vector<Curve>& curves, std::vector<LaSegmentView>& views) {
+  std::size_t count = 0;
+  for (const Curve& c : curves) count += c.pieces.size();
+  views.clear();
+  views.reserve(count);  // no reallocation: the chains keep pointers into it
+  std::vector<ExportCurve> out;
+  for (const Curve& c : curves) {
+    ExportCurve e;
+    e.closed = c.closed;
+    for (const CurvePiece& piece : c.pieces) {
+      views.emplace_back(piece.segment);
+      e.pieces.push_back({&views.back(), piece.corner});
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+std::vector<ExportCurve> chainsOf(const std::vector<AlpCurve>& curves) {
+  std::vector<ExportCurve> out;
+  for (const AlpCurve& c : curves) out.push_back({{{&c, false}}, false});
   return out;
 }
 
 }  // namespace
 
 double drawingDiagonal(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points) {
+  std::vector<LaSegmentView> views;
+  return exportDrawingDiagonal(chainsOf(curves, views), points);
+}
+
+std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points,
+                        const SvgOptions& options) {
+  std::vector<LaSegmentView> views;
+  return exportCurvesToSvg(chainsOf(curves, views), points, options);
+}
+
+std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolerance) {
+  std::vector<LaSegmentView> views;
+  return exportCurvesToDxf(chainsOf(curves, views), relative_tolerance);
+}
+
+std::string curvesToCsv(const std::vector<Curve>& curves, const CurveSampling& sampling) {
+  std::vector<LaSegmentView> views;
+  return exportCurvesToCsv(chainsOf(curves, views), sampling);
+}
+
+std::string alpCurvesToSvg(const std::vector<AlpCurve>& curves, const std::vector<std::vector<Vec2>>& points,
+                           const SvgOptions& options) {
+  return exportCurvesToSvg(chainsOf(curves), points, options);
+}
+
+std::string alpCurvesToDxf(const std::vector<AlpCurve>& curves, double relative_tolerance) {
+  return exportCurvesToDxf(chainsOf(curves), relative_tolerance);
+}
+
+std::string alpCurvesToCsv(const std::vector<AlpCurve>& curves, const CurveSampling& sampling) {
+  return exportCurvesToCsv(chainsOf(curves), sampling);
+}
+
+double exportDrawingDiagonal(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points) {
   const Box box = boxOf(curves, points);
   if (box.empty()) return 1.0;
   const double d = (box.hi - box.lo).norm();
   return d > 0.0 ? d : 1.0;
 }
 
-std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points,
-                        const SvgOptions& options) {
+std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points,
+                              const SvgOptions& options) {
   Box box = boxOf(curves, points);
   if (box.empty()) box.add(Vec2::Zero());
   const double diag = std::max((box.hi - box.lo).norm(), 1e-300);
@@ -81,14 +141,14 @@ std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std:
   if (options.show_comb) {
     // Teeth along the left normal scaled by kappa; the largest |kappa| gets comb_scale * diag.
     double kmax = 0.0;
-    for (const Curve& c : curves)
-      for (const CurvePiece& piece : c.pieces)
-        kmax = std::max({kmax, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
+    for (const ExportCurve& c : curves)
+      for (const ExportPiece& piece : c.pieces) kmax = std::max(kmax, piece.curve->maxAbsKappa());
     const double scale = kmax > 0 ? options.comb_scale * diag / kmax : 0.0;
     svg << "<g id=\"curvature-comb\" stroke=\"#d33\" stroke-width=\"" << num(0.5 * width) << "\" fill=\"none\">\n";
-    for (const Curve& c : curves)
-      for (const CurvePiece& piece : c.pieces) {
-        const CurveSamples smp = piece.segment.sample(std::max(2, options.comb_teeth_per_segment));
+    for (const ExportCurve& c : curves)
+      for (const ExportPiece& piece : c.pieces) {
+        CurveSamples smp;
+        piece.curve->sample(std::max(2, options.comb_teeth_per_segment), smp);
         std::ostringstream envelope;
         for (std::size_t i = 0; i < smp.size(); ++i) {
           const Vec2 n(-smp.tangent[i].y(), smp.tangent[i].x());
@@ -102,7 +162,7 @@ std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std:
     svg << "</g>\n";
   }
   svg << "<g id=\"fitted-curves\" stroke=\"#1565c0\" stroke-width=\"" << num(width) << "\" fill=\"none\">\n";
-  for (const Curve& c : curves) {
+  for (const ExportCurve& c : curves) {
     if (c.pieces.empty()) continue;
     std::ostringstream d;
     const auto beziers = beziersOf(c, options.bezier_tolerance * diag);
@@ -117,8 +177,8 @@ std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std:
   return svg.str();
 }
 
-std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolerance) {
-  const double tol = relative_tolerance * drawingDiagonal(curves, {});
+std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, double relative_tolerance) {
+  const double tol = relative_tolerance * exportDrawingDiagonal(curves, {});
   std::ostringstream dxf;
   auto pair = [&](int code, const std::string& value) { dxf << code << '\n' << value << '\n'; };
   pair(0, "SECTION");
@@ -128,7 +188,7 @@ std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolera
   pair(0, "ENDSEC");
   pair(0, "SECTION");
   pair(2, "ENTITIES");
-  for (const Curve& c : curves) {
+  for (const ExportCurve& c : curves) {
     if (c.pieces.empty()) continue;
     const auto beziers = beziersOf(c, tol);
     // A Bezier chain is a cubic B-spline with interior knots of multiplicity 3.
@@ -163,16 +223,16 @@ std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolera
   return dxf.str();
 }
 
-std::string curvesToCsv(const std::vector<Curve>& curves, const CurveSampling& sampling) {
+std::string exportCurvesToCsv(const std::vector<ExportCurve>& curves, const CurveSampling& sampling) {
   std::ostringstream csv;
   csv << "x,y,s,theta,kappa\n";
   bool first = true;
-  for (const Curve& c : curves) {
+  for (const ExportCurve& c : curves) {
     if (!first) csv << '\n';
     first = false;
     double s0 = 0.0;
     for (std::size_t j = 0; j < c.pieces.size(); ++j) {
-      const LaSegment& seg = c.pieces[j].segment;
+      const ArcLengthCurve& seg = *c.pieces[j].curve;
       CurveSamples smp;
       seg.sample(std::max(2, sampling.per_segment), smp, s0);
       // the first sample of a later segment repeats the joint, unless it is a corner

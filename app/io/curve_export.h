@@ -3,14 +3,36 @@
 // SVG (cubic Beziers, optional input points and curvature comb), DXF (one SPLINE
 // entity per curve), and CSV samples (x, y, s, theta, kappa). All return text; the
 // caller writes it with writeFileAtomically.
+//
+// The writers work on chains of arc-length curves (core/arc_length_curve.h): the
+// curvesTo* functions take LA curves (core/curve.h), the alpCurvesTo* functions ALP
+// curves (core/alp_curve.h, one chain per curve), and the exportCurvesTo* functions
+// any mix of both as ExportCurve chains. For LA curves the output is the same as
+// before the generalization, byte for byte.
 
 #include <string>
 #include <vector>
 
+#include "core/alp_curve.h"
+#include "core/arc_length_curve.h"
 #include "core/curve.h"
 #include "core/geometry.h"
 
 namespace la {
+
+/// One piece of an export chain: a curve that must outlive the call, and whether it
+/// starts at a deliberate G0 corner (for CSV: its first sample is then kept).
+struct ExportPiece {
+  const ArcLengthCurve* curve = nullptr;
+  bool corner = false;
+};
+
+/// A chain of pieces, each starting where the previous one ends: an LA curve's
+/// segments, or a single ALP curve. Drawn as one SVG path / one DXF SPLINE.
+struct ExportCurve {
+  std::vector<ExportPiece> pieces;
+  bool closed = false;
+};
 
 /// Samples along a whole curve (all its segments), uniform in arc length per segment.
 struct CurveSampling {
@@ -40,5 +62,25 @@ std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolera
 /// CSV with header `x,y,s,theta,kappa`, a blank line between curves (so the file is
 /// itself a point file).
 std::string curvesToCsv(const std::vector<Curve>& curves, const CurveSampling& sampling = {});
+
+// ALP curves (for lafit alp and the GUI's ALP construction). Same formats and
+// options as the LA writers above; the Bezier pieces stay within bezier_tolerance *
+// diagonal of the curve (inflections and curvature extrema included), the comb is
+// scaled by the largest |kappa| on the curve, and the CSV has per_segment samples per
+// ALP curve.
+
+std::string alpCurvesToSvg(const std::vector<AlpCurve>& curves, const std::vector<std::vector<Vec2>>& points = {},
+                           const SvgOptions& options = {});
+std::string alpCurvesToDxf(const std::vector<AlpCurve>& curves, double relative_tolerance = 1e-4);
+std::string alpCurvesToCsv(const std::vector<AlpCurve>& curves, const CurveSampling& sampling = {});
+
+// The general writers, for chains of any arc-length curves (e.g. LA and ALP curves
+// in one drawing: build LaSegmentView adapters for the LA segments).
+
+double exportDrawingDiagonal(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points);
+std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points,
+                              const SvgOptions& options = {});
+std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, double relative_tolerance = 1e-4);
+std::string exportCurvesToCsv(const std::vector<ExportCurve>& curves, const CurveSampling& sampling = {});
 
 }  // namespace la

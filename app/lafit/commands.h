@@ -12,5 +12,9 @@ int fitCommand(const std::vector<std::string>& args);
 int batchCommand(const std::vector<std::string>& args);
 int hermiteCommand(const std::vector<std::string>& args);
 int compoundCommand(const std::vector<std::string>& args);
+/// `lafit alp`: one ALP curve (explicit Bezier curvature) by G1/G2 Hermite interpolation.
+int alpCommand(const std::vector<std::string>& args);
+/// `lafit alp-region`: the (kappa_s, kappa_e) region of monotone G2 ALP curves, as SVG and CSV.
+int alpRegionCommand(const std::vector<std::string>& args);
 
 }  // namespace la::cli

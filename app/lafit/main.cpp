@@ -21,6 +21,8 @@ commands:
   segment   one LA segment from a control triangle (3-point or inflection-end construction)
   hermite   triple-LA G2 Hermite curve between two ends (point, tangent angle, curvature)
   compound  a compound-rhythm curve: two LA segments joined G3, from four control points
+  alp       one ALP curve (explicit Bezier curvature function) by G1/G2 Hermite interpolation
+  alp-region  the end curvatures for which a G2 ALP curve is monotone without inflection
 
 `lafit COMMAND --help` explains a command.
 )";
@@ -41,6 +43,8 @@ int main(int argc, char** argv) {
     if (command == "segment") return la::cli::segmentCommand(args);
     if (command == "hermite") return la::cli::hermiteCommand(args);
     if (command == "compound") return la::cli::compoundCommand(args);
+    if (command == "alp") return la::cli::alpCommand(args);
+    if (command == "alp-region") return la::cli::alpRegionCommand(args);
     std::cerr << "lafit: unknown command '" << command << "'\n" << kHelp;
     return 2;
   } catch (const la::cli::UsageError& e) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/lafit/cli_args.h"
+#include "core/alp_curve.h"
 #include "core/curve_json.h"
 #include "core/geometry.h"
 #include "nlohmann/json.hpp"
@@ -19,5 +20,10 @@ inline const std::set<std::string> kOutputFlags = {"--comb", "--y-up"};
 /// command adds); `curves` and `points` feed the drawing formats.
 void writeOutputs(const Args& args, const nlohmann::json& document, const std::vector<Curve>& curves,
                   const std::vector<std::vector<Vec2>>& points);
+
+/// The same for ALP curves (app/io/curve_export.h's alpCurvesTo*); the CSV has
+/// `csv_samples` samples per curve.
+void writeAlpOutputs(const Args& args, const nlohmann::json& document, const std::vector<AlpCurve>& curves,
+                     const std::vector<std::vector<Vec2>>& points, int csv_samples = 201);
 
 }  // namespace la::cli
