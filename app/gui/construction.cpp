@@ -1,11 +1,18 @@
 #include "app/gui/construction.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <numbers>
+#include <utility>
 #include <stdexcept>
 
+#include "core/alp_curve_json.h"
+#include "core/alp_hermite.h"
+#include "core/compound_rhythm.h"
 #include "core/curve_json.h"
 #include "core/three_point_segment.h"
+#include "core/triple_la_hermite.h"
 
 namespace la::gui {
 namespace {
@@ -65,6 +72,76 @@ ConstructionResult solveSegment(const Construction& c) {
   Curve curve;
   curve.pieces.push_back({*s.segment, false});
   fillFromCurve(r, curve, s.report, {{"construction", "segment"}, {"control_points", pointsToJson(c.handles)}});
+  return r;
+}
+
+ConstructionResult solveCompound(const Construction& c) {
+  const double joint_deg = c.parameter("joint_angle");
+  const double joint_theta = std::isnan(joint_deg) ? kNaN : joint_deg * std::numbers::pi / 180.0;
+  const CompoundRhythmSolve s = solveCompoundRhythm(c.parameter("alpha0"), c.parameter("alpha1"),
+                                                    {c.handles[0], c.handles[1], c.handles[2], c.handles[3]}, joint_theta);
+  if (!s.report.usable()) return failed(s.report);
+  ConstructionResult r;
+  fillFromCurve(r, *s.curve, s.report,
+                {{"construction", "compound"}, {"control_points", pointsToJson(c.handles)}, {"joint_theta", s.joint_theta}});
+  return r;
+}
+
+// The end conditions of the Hermite-type kinds: P0 = handle 0 heading towards handle 1,
+// P1 = handle 3 arriving from handle 2; curvatures given relative to the chord. The end
+// angle is taken within half a turn of the start's, the winding a designer means.
+std::optional<std::pair<HermiteEnd, HermiteEnd>> hermiteEnds(const Construction& c) {
+  const double chord = (c.handles[3] - c.handles[0]).norm();
+  if (!(chord > 0.0) || c.handles[1] == c.handles[0] || c.handles[3] == c.handles[2]) return std::nullopt;
+  HermiteEnd a, b;
+  a.point = c.handles[0];
+  a.theta = angleOf(c.handles[1] - c.handles[0]);
+  a.kappa = c.parameter("kappa_start") / chord;
+  b.point = c.handles[3];
+  b.theta = a.theta + wrapAngle(angleOf(c.handles[3] - c.handles[2]) - a.theta);
+  b.kappa = c.parameter("kappa_end") / chord;
+  return std::pair{a, b};
+}
+
+ConstructionResult noEnds() {
+  return failed({SolveStatus::kBadInput, 0, kNaN, "the ends coincide, or a tangent handle sits on its end point"});
+}
+
+ConstructionResult solveHermite(const Construction& c) {
+  const auto ends = hermiteEnds(c);
+  if (!ends) return noEnds();
+  const TripleLaHermiteSolve s = solveTripleLaHermite(c.parameter("alpha"), ends->first, ends->second);
+  if (!s.report.usable()) return failed(s.report);
+  ConstructionResult r;
+  fillFromCurve(r, *s.curve, s.report, {{"construction", "hermite"}, {"control_points", pointsToJson(c.handles)}});
+  return r;
+}
+
+ConstructionResult solveAlp(const Construction& c) {
+  const auto ends = hermiteEnds(c);
+  if (!ends) return noEnds();
+  AlpShape shape;
+  shape.degree = static_cast<int>(std::lround(c.parameter("degree")));
+  shape.p = c.parameter("p");
+  shape.rational = c.parameter("rational") > 0.5;
+  shape.w_e = c.parameter("w_e");
+  shape.p_w = c.parameter("p_w");
+  const int continuity = c.parameter("g2") > 0.5 ? 2 : 1;
+  const AlpSolve s = solveAlpHermite(ends->first, ends->second, continuity, shape);
+  if (!s.report.usable()) return failed(s.report);
+  ConstructionResult r;
+  r.ok = true;
+  r.alp = *s.curve;
+  r.message = s.report.message + (s.check.has_inflection ? "; inflection inside" : "") +
+              (s.check.monotone ? "; curvature monotone" : "; " + std::to_string(s.check.extrema.size()) + " curvature extrema");
+  CurveSamples samples;
+  s.curve->sample(kSamplesPerSegment * 2, samples);
+  addSamples(r, samples);
+  r.joints = {0.0};
+  r.json = alpCurveToJson(*s.curve, s.check);
+  nlohmann::json solve = {{"construction", "alp"}, {"control_points", pointsToJson(c.handles)}, {"continuity", continuity}};
+  solve.update(solveToJson(s.report));
+  r.json["solve"] = std::move(solve);
   return r;
 }
 
@@ -161,7 +238,9 @@ void Construction::solve() {
     }
   switch (kind) {
     case ConstructionKind::kSegment: result = solveSegment(*this); return;
-    default: break;
+    case ConstructionKind::kCompound: result = solveCompound(*this); return;
+    case ConstructionKind::kHermite: result = solveHermite(*this); return;
+    case ConstructionKind::kAlp: result = solveAlp(*this); return;
   }
   result = failed({SolveStatus::kBadInput, 0, kNaN, "unknown construction"});
 }

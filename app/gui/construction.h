@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/alp_curve.h"
 #include "core/curve.h"
 #include "nlohmann/json.hpp"
 
@@ -45,6 +46,7 @@ struct ConstructionResult {
   bool ok = false;
   std::string message;            // the solver's status, or why there is no curve
   std::optional<Curve> curve;     // the LA kinds: the curve in the shared format
+  std::optional<AlpCurve> alp;    // kAlp: the curve with its explicit curvature function
   std::vector<Vec2> points;       // dense points along the curve, for drawing
   std::vector<Vec2> normals;      // unit left normals at those points
   std::vector<double> kappa;      // signed curvature there (comb, plots)

@@ -487,6 +487,8 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   std::vector<Curve> curves;
   std::vector<std::vector<Vec2>> points;
   std::vector<CurveOrError> entries;
+  std::vector<AlpCurve> alps;
+  nlohmann::json alp_entries = nlohmann::json::array();
   for (std::size_t k = 0; k < m_document.strokes().size() && !only_construction; ++k) {
     if (selected_only && static_cast<int>(k) != m_selected_stroke) continue;
     const DocumentStroke& s = m_document.strokes()[k];
@@ -501,6 +503,12 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   for (std::size_t k = 0; k < m_document.constructions().size(); ++k) {
     if (selected_only && !(only_construction && static_cast<int>(k) == m_selected_construction)) continue;
     const Construction& c = m_document.constructions()[k];
+    if (c.result.alp) {  // not an LA curve: drawn by the same writers, kept apart in JSON
+      alps.push_back(*c.result.alp);
+      alp_entries.push_back(c.result.json);
+      points.push_back(c.handles);
+      continue;
+    }
     if (!c.result.curve) {
       entries.push_back({std::nullopt, c.result.message});
       continue;
@@ -509,18 +517,27 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
     points.push_back(c.handles);
     entries.push_back({*c.result.curve, {}});
   }
+  // LA curves first, then ALP curves, as chains for the general writers.
+  std::vector<LaSegmentView> views;
+  std::vector<ExportCurve> chains = exportChains(curves, views);
+  for (ExportCurve& chain : exportChains(alps)) chains.push_back(std::move(chain));
   const QString ext = QFileInfo(path).suffix().toLower();
   try {
     if (ext == "svg") {
       SvgOptions o;
       o.show_comb = m_canvas->layers().comb;
-      writeFileAtomically(path.toStdString(), curvesToSvg(curves, points, o));
+      writeFileAtomically(path.toStdString(), exportCurvesToSvg(chains, points, o));
     } else if (ext == "dxf") {
-      writeFileAtomically(path.toStdString(), curvesToDxf(curves));
+      writeFileAtomically(path.toStdString(), exportCurvesToDxf(chains));
     } else if (ext == "csv") {
-      writeFileAtomically(path.toStdString(), curvesToCsv(curves));
-    } else if (ext == "json") {
+      writeFileAtomically(path.toStdString(), exportCurvesToCsv(chains));
+    } else if (ext == "json" && alps.empty()) {
       writeCurvesFile(path.toStdString(), entries);
+    } else if (ext == "json") {
+      // The shared format holds LA curves only; ALP curves follow under their own key.
+      nlohmann::json doc = nlohmann::json::parse(curvesDocumentToString(entries));
+      doc["alp_curves"] = alp_entries;
+      writeFileAtomically(path.toStdString(), doc.dump(2) + "\n");
     } else {
       showError("unknown export format '." + ext + "' (svg, dxf, json or csv)");
       return false;

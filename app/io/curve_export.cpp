@@ -47,8 +47,9 @@ std::vector<CubicBezier> beziersOf(const ExportCurve& curve, double tolerance) {
   return out;
 }
 
-// The LA curves as export chains; `views` owns the adapters the chains point to.
-std::vector<ExportCurve> chainsOf(const std::vector<Curve>& curves, std::vector<LaSegmentView>& views) {
+}  // namespace
+
+std::vector<ExportCurve> exportChains(const std::vector<Curve>& curves, std::vector<LaSegmentView>& views) {
   std::size_t count = 0;
   for (const Curve& c : curves) count += c.pieces.size();
   views.clear();
@@ -66,46 +67,44 @@ std::vector<ExportCurve> chainsOf(const std::vector<Curve>& curves, std::vector<
   return out;
 }
 
-std::vector<ExportCurve> chainsOf(const std::vector<AlpCurve>& curves) {
+std::vector<ExportCurve> exportChains(const std::vector<AlpCurve>& curves) {
   std::vector<ExportCurve> out;
   for (const AlpCurve& c : curves) out.push_back({{{&c, false}}, false});
   return out;
 }
 
-}  // namespace
-
 double drawingDiagonal(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points) {
   std::vector<LaSegmentView> views;
-  return exportDrawingDiagonal(chainsOf(curves, views), points);
+  return exportDrawingDiagonal(exportChains(curves, views), points);
 }
 
 std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points,
                         const SvgOptions& options) {
   std::vector<LaSegmentView> views;
-  return exportCurvesToSvg(chainsOf(curves, views), points, options);
+  return exportCurvesToSvg(exportChains(curves, views), points, options);
 }
 
 std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolerance) {
   std::vector<LaSegmentView> views;
-  return exportCurvesToDxf(chainsOf(curves, views), relative_tolerance);
+  return exportCurvesToDxf(exportChains(curves, views), relative_tolerance);
 }
 
 std::string curvesToCsv(const std::vector<Curve>& curves, const CurveSampling& sampling) {
   std::vector<LaSegmentView> views;
-  return exportCurvesToCsv(chainsOf(curves, views), sampling);
+  return exportCurvesToCsv(exportChains(curves, views), sampling);
 }
 
 std::string alpCurvesToSvg(const std::vector<AlpCurve>& curves, const std::vector<std::vector<Vec2>>& points,
                            const SvgOptions& options) {
-  return exportCurvesToSvg(chainsOf(curves), points, options);
+  return exportCurvesToSvg(exportChains(curves), points, options);
 }
 
 std::string alpCurvesToDxf(const std::vector<AlpCurve>& curves, double relative_tolerance) {
-  return exportCurvesToDxf(chainsOf(curves), relative_tolerance);
+  return exportCurvesToDxf(exportChains(curves), relative_tolerance);
 }
 
 std::string alpCurvesToCsv(const std::vector<AlpCurve>& curves, const CurveSampling& sampling) {
-  return exportCurvesToCsv(chainsOf(curves), sampling);
+  return exportCurvesToCsv(exportChains(curves), sampling);
 }
 
 double exportDrawingDiagonal(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points) {

@@ -77,6 +77,12 @@ std::string alpCurvesToCsv(const std::vector<AlpCurve>& curves, const CurveSampl
 // The general writers, for chains of any arc-length curves (e.g. LA and ALP curves
 // in one drawing: build LaSegmentView adapters for the LA segments).
 
+/// The LA curves as export chains; `views` owns the adapters the chains point to, so it
+/// must outlive them.
+std::vector<ExportCurve> exportChains(const std::vector<Curve>& curves, std::vector<LaSegmentView>& views);
+/// ALP curves as export chains, one each; they point into `curves`.
+std::vector<ExportCurve> exportChains(const std::vector<AlpCurve>& curves);
+
 double exportDrawingDiagonal(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points);
 std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points,
                               const SvgOptions& options = {});

@@ -401,6 +401,66 @@ TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   EXPECT_GT(blue, 100) << "no curve pixels in the screenshot";
 }
 
+// Construct > compound rhythm, triple-LA Hermite, ALP: each gives a curve from its
+// default handles; dragging the end handle re-solves it live and the curve still starts
+// and ends on its handles, with continuous curvature at the joints of LA pieces; every
+// parameter in reach of its slider solves or says why; the curve is saved, reopened and
+// exported in every format.
+class ConstructionKindTest : public MainWindowTest, public ::testing::WithParamInterface<ConstructionKind> {};
+
+TEST_P(ConstructionKindTest, FollowsItsHandlesKeepsContinuityAndExports) {
+  window->addConstruction(GetParam());
+  ASSERT_EQ(window->document().constructions().size(), 1u);
+  ASSERT_TRUE(window->document().constructions()[0].result.ok) << window->document().constructions()[0].result.message;
+  Canvas* canvas = window->canvas();
+  const Vec2 start_handle = window->document().constructions()[0].handles[3];
+  const QPoint from = canvas->toWidget(start_handle).toPoint();
+  const QPoint to = from + QPoint(-6, 9);
+  QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, from);
+  QMouseEvent move(QEvent::MouseMove, to, canvas->mapToGlobal(to), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(canvas, &move);
+  QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, to);
+  EXPECT_TRUE(window->document().strokes().empty()) << "a handle drag draws no stroke";
+  const Construction& c = window->document().constructions()[0];
+  ASSERT_TRUE(c.result.ok) << c.result.message;
+  const double chord = (c.handles[3] - c.handles[0]).norm();
+  const QPointF w = canvas->toWorld(to);
+  EXPECT_LT((c.handles[3] - Vec2(w.x(), w.y())).norm(), 1e-9 * chord);
+  EXPECT_LT((c.result.points.front() - c.handles[0]).norm(), 1e-8 * chord);
+  EXPECT_LT((c.result.points.back() - c.handles[3]).norm(), 1e-8 * chord) << "the curve ends on the dragged handle";
+  if (c.result.curve) {
+    const auto& pieces = c.result.curve->pieces;
+    for (std::size_t i = 1; i < pieces.size(); ++i) {
+      const LaSegment &a = pieces[i - 1].segment, &b = pieces[i].segment;
+      EXPECT_LT((a.end() - b.start()).norm(), 1e-9 * chord) << "joint " << i;
+      EXPECT_NEAR(a.theta(a.length()), b.theta0(), 1e-9) << "joint " << i;
+      EXPECT_NEAR(a.kappaEnd(), b.kappaStart(), 1e-8 * std::max(1.0, std::abs(a.kappaEnd()))) << "joint " << i;
+    }
+  }
+  window->undoStack()->undo();
+  EXPECT_EQ(window->document().constructions()[0].handles[3], start_handle) << "undo puts the handle back";
+  window->undoStack()->redo();
+
+  const QString path = dir.filePath("constructed.lafair.json");
+  ASSERT_TRUE(window->saveFile(path));
+  MainWindow other;
+  ASSERT_TRUE(other.openFile(path));
+  ASSERT_EQ(other.document().constructions().size(), 1u);
+  EXPECT_EQ(other.document().constructions()[0].handles, window->document().constructions()[0].handles);
+  EXPECT_EQ(other.document().constructions()[0].result.points.size(), c.result.points.size());
+  for (const char* ext : {"svg", "dxf", "json", "csv"}) {
+    const QString out = dir.filePath(QString("construction.") + ext);
+    ASSERT_TRUE(window->exportFile(out, true)) << ext;
+    QFile f(out);
+    ASSERT_TRUE(f.open(QIODevice::ReadOnly)) << ext;
+    EXPECT_GT(f.size(), 100) << ext;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, ConstructionKindTest,
+                         ::testing::Values(ConstructionKind::kCompound, ConstructionKind::kHermite, ConstructionKind::kAlp),
+                         [](const ::testing::TestParamInfo<ConstructionKind>& info) { return std::string(toString(info.param)); });
+
 }  // namespace
 }  // namespace la::gui
 
