@@ -1,6 +1,7 @@
 #include "core/three_point_segment.h"
 
 #include <algorithm>
+#include <complex>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -29,16 +30,12 @@ constexpr double kMaxExponent = 600.0;
 constexpr double kLayoutMargin = 0.6;
 constexpr int kLogBaseNodes = 24;
 constexpr double kLogBasePanelChange = 12.0;
-// The rough rule for Newton's first steps: 8 nodes over changes of 4 per panel give
-// ~(2^16 / 16!) ~ 3e-9 relative, plenty until the chord angle is within 1e-5.
-constexpr int kRoughNodes = 8;
-constexpr double kRoughPanelChange = 4.0;
-constexpr double kRoughStageTolerance = 1e-5;  // in the logit of the chord angle
 
 struct StandardEval {
   Vec2 end = Vec2::Zero();     // E(m)
   Vec2 d_end = Vec2::Zero();   // dE/dm
   double length = 0.0;         // S(m) = integral of rho dtheta
+  double d_length = 0.0;       // dS/dm
   double chordAngle() const { return std::atan2(end.y(), end.x()); }
   double dChordAngle() const { return cross(end, d_end) / end.squaredNorm(); }
 };
@@ -50,15 +47,14 @@ class StandardForm {
  public:
   StandardForm(double alpha, double theta_d) : alpha_(alpha), theta_d_(theta_d) {}
 
-  /// `rough`: about 1e-6 relative instead of 1e-15, for Newton's first steps.
-  StandardEval eval(double m, bool rough = false) {
+  StandardEval eval(double m) {
     const Law law = lawAt(m);
     // One panel of fixed nodes (cos/sin reused) when rho is tame in tau; otherwise
     // the log-base form, whose integrand is smooth however close the branch point is.
     if (!law.unit_alpha && !singlePanelValid(law))
-      return rough ? evalLogBase<kRoughNodes>(law, kRoughPanelChange) : evalLogBase<kLogBaseNodes>(law, kLogBasePanelChange);
+      return evalLogBase<kLogBaseNodes>(law, kLogBasePanelChange);
     if (!layoutValid(law)) buildLayout(law);
-    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
+    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0, dlen = 0;
     for (std::size_t k = 0; k < tau_.size(); ++k) {
       const double t = tau_[k];
       double rho, drho;
@@ -78,11 +74,13 @@ class StandardForm {
       dx += wd * cos_[k];
       dy += wd * sin_[k];
       len += wr;
+      dlen += wd;
     }
     StandardEval out;
     out.end = theta_d_ * Vec2(ex, ey);
     out.d_end = theta_d_ * Vec2(dx, dy);
     out.length = theta_d_ * len;
+    out.d_length = theta_d_ * dlen;
     return out;
   }
 
@@ -136,7 +134,7 @@ class StandardForm {
     const double exp_rate = std::max({std::abs(law.p + 1.0), std::abs(law.p), 1.0});
     const double lo = std::min(0.0, range), hi = std::max(0.0, range);
     const auto& rule = gaussLegendre<Nodes>();
-    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
+    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0, dlen = 0;
     for (double top = hi; top > lo;) {
       const double theta_rate = theta_d_ * std::exp(top) / std::abs(law.a);
       const double bottom = std::max(lo, top - panel_change / (exp_rate + theta_rate));
@@ -153,6 +151,7 @@ class StandardForm {
         dx += w * tau * c;
         dy += w * tau * sn;
         len += wr;
+        dlen += w * tau;
       }
       top = bottom;
     }
@@ -161,6 +160,7 @@ class StandardForm {
     out.end = scale * Vec2(ex, ey);
     out.d_end = scale * law.b_end * Vec2(dx, dy);
     out.length = scale * len;
+    out.d_length = scale * law.b_end * dlen;
     return out;
   }
   bool singlePanelValid(const Law& law) const {
@@ -231,6 +231,41 @@ SegmentSolve badInput(SolveReport report) {
   return out;
 }
 
+// M(q) = integral_0^1 tau^q e^{i theta tau} dtau = sum_k (i theta)^k / (k! (k + q + 1))
+// for q > -1, as (real, imaginary). The terms fall like theta^k / k!: for theta < pi
+// they are below 1e-18 after ~35 terms; the largest is ~e^pi, so ~2 digits cancel at
+// worst (the same series as inflection_segment.cpp's).
+Vec2 powerMoment(double q, double theta) {
+  constexpr int kMaxTerms = 60;
+  constexpr double kNegligibleTerm = 1e-18;
+  double cr = 1.0, ci = 0.0;  // (i theta)^k / k!
+  Vec2 sum = Vec2::Zero();
+  for (int k = 0; k < kMaxTerms && std::abs(cr) + std::abs(ci) >= kNegligibleTerm; ++k) {
+    const double w = 1.0 / (k + q + 1.0);
+    sum += Vec2(cr * w, ci * w);
+    const double scale = theta / (k + 1);
+    const double next_r = -ci * scale, next_i = cr * scale;
+    cr = next_r;
+    ci = next_i;
+  }
+  return sum;
+}
+
+std::complex<double> toComplex(const Vec2& v) { return {v.x(), v.y()}; }
+
+// The chord angles phi(m) tends to as m -> -inf and m -> +inf. The limit shapes are
+// powers of tau: for alpha > 1, rho -> const * tau^p as m -> +inf (rho(0) -> 0); for
+// alpha < 0, rho -> const * tau^p as m -> -inf (rho(0) -> inf, integrable since
+// p > -1: the inflection-start segment). So one limit is arg M(p) and the other
+// theta_d minus it (reversal: m -> -m, phi -> theta_d - phi). For 0 <= alpha <= 1
+// rho^p is not integrable and the limits are 0 and theta_d.
+ChordAngleRange chordAngleLimits(double alpha, double theta_d) {
+  if (!(alpha < 0.0 || alpha > 1.0)) return {0.0, theta_d};
+  const Vec2 moment = powerMoment(1.0 / (alpha - 1.0), theta_d);
+  const double limit = std::atan2(moment.y(), moment.x());
+  return alpha < 0.0 ? ChordAngleRange{limit, theta_d - limit} : ChordAngleRange{theta_d - limit, limit};
+}
+
 }  // namespace
 
 ChordAngleRange reachableChordAngles(double alpha, double theta_d, const ThreePointOptions& options) {
@@ -290,39 +325,49 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
 
   StandardForm form(alpha, theta_d);
   StandardEval last;
-  // Newton on the logit of the chord angle, log(phi / (theta_d - phi)): the chord angle
-  // saturates towards its limits like a logistic curve in m, which plain Newton
-  // approaches from one side in many small steps; in the logit it is nearly straight.
-  auto logit = [&](double phi) { return std::log(phi / (theta_d - phi)); };
+  // Newton on a logit of the chord angle, g = log((phi - lo) / (hi - phi)), with lo, hi
+  // the limits of phi(m) for m -> -+inf: phi approaches them exponentially in m, so g
+  // is nearly linear in m (slope ~|alpha| or |alpha - 1| at both ends) and Newton
+  // converges quadratically from the start below; with (0, theta_d) instead it crawls
+  // along the saturated ends (alpha = -3: 11 evaluations instead of 3). A target
+  // outside (lo, hi) is unreachable; the plain logit then leads to that report.
+  ChordAngleRange limits = chordAngleLimits(alpha, theta_d);
+  if (!limits.contains(target)) limits = {0.0, theta_d};
+  auto logit = [&](double phi) { return std::log((phi - limits.lo) / (limits.hi - phi)); };
+  auto dlogit = [&](double phi) { return 1.0 / (phi - limits.lo) + 1.0 / (limits.hi - phi); };
   const double target_logit = logit(target);
-  bool rough = false;
   auto residual = [&](double m) {
-    last = form.eval(m, rough);
+    last = form.eval(m);
     const double phi = last.chordAngle();
-    if (!(phi > 0.0 && phi < theta_d)) return std::pair{phi - target, last.dChordAngle()};
-    return std::pair{logit(phi) - target_logit, last.dChordAngle() * theta_d / (phi * (theta_d - phi))};
+    // rounding can put phi on a limit at the far end of the bracket: same sign there
+    if (!limits.contains(phi)) return std::pair{phi - target, last.dChordAngle()};
+    return std::pair{logit(phi) - target_logit, last.dChordAngle() * dlogit(phi)};
   };
   const double m_max = maxShape(alpha, options);
   const bool up = target > 0.5 * theta_d;  // chord angle grows with m; circle at m = 0
+  const double lo = up ? 0.0 : -m_max, hi = up ? m_max : 0.0;
   RootOptions root_options;
-  // |d logit / d phi| >= 4 / theta_d, so this keeps |phi - target| <= chord_tolerance * theta_d
-  root_options.f_tol = 4.0 * options.chord_tolerance;
+  // |phi - target| <= chord_tolerance * theta_d to first order (dg/dphi >= 4 / theta_d)
+  root_options.f_tol = options.chord_tolerance * theta_d * dlogit(target);
   root_options.x_tol = 1e-15;
   root_options.max_iterations = options.max_iterations;
-  // Two stages: rough evaluations to get close, then the full rule from there (Newton
-  // needs one or two steps). The bracket is the whole range both times, so the second
-  // stage still finds the root, or its absence, if the rough one was misled.
-  rough = true;
-  RootOptions rough_options = root_options;
-  rough_options.f_tol = kRoughStageTolerance;
-  const double lo = up ? 0.0 : -m_max, hi = up ? m_max : 0.0;
-  const RootResult first = solveMonotone(residual, lo, hi, 0.0, true, rough_options);
-  rough = false;
-  const double start = std::isfinite(first.x) ? std::clamp(first.x, lo, hi) : 0.0;
+  // Start: the quadratic Taylor model of g at the circle m = 0, in closed form:
+  // log rho = m tau + (alpha-1) m^2 (tau - tau^2)/2 + O(m^3), so with M_k = powerMoment(k)
+  // E ~ M_0, dE/dm ~ M_1, d2E/dm2 ~ (2-alpha) M_2 + (alpha-1) M_1 (times theta_d), and
+  // phi' = Im(E'/E), phi'' = Im(E''/E - (E'/E)^2); dg/dphi is stationary at phi = theta_d/2.
+  const std::complex<double> e0 = toComplex(powerMoment(0.0, theta_d)), e1 = toComplex(powerMoment(1.0, theta_d)),
+                             e2 = (2.0 - alpha) * toComplex(powerMoment(2.0, theta_d)) + (alpha - 1.0) * e1;
+  const std::complex<double> r1 = e1 / e0, r2 = e2 / e0;
+  const double g1 = dlogit(0.5 * theta_d) * r1.imag(), g2 = dlogit(0.5 * theta_d) * (r2 - r1 * r1).imag();
+  const double disc = g1 * g1 + 2.0 * g2 * target_logit;  // root of g1 m + g2 m^2 / 2 = target near 0
+  const double guess = disc > 0.0 ? 2.0 * target_logit / (g1 + std::sqrt(disc)) : target_logit / g1;
+  const double start = std::isfinite(guess) ? std::clamp(guess, lo, hi) : 0.0;
+  // The last Newton step is predicted instead of confirmed by one more evaluation.
+  constexpr double kFinishSafety = 0.25;  // the secant f'' may be off by a few
+  root_options.newton_finish_tol = kFinishSafety * root_options.f_tol;
   RootResult root = solveMonotone(residual, lo, hi, start, true, root_options);
-  root.report.iterations += first.report.iterations;
   out.report = root.report;
-  out.shape = root.x;
+  out.shape = root.x + root.newton_step;
   if (root.report.status == SolveStatus::kInfeasible) {
     out.report.message = "triangle not reachable with alpha = " + std::to_string(alpha) + ": chord angle " +
                          std::to_string(target) + " rad for turning angle " + std::to_string(theta_d) + " rad";
@@ -333,8 +378,13 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
     return out;
   }
   if (!root.report.usable()) return out;
-  // solveMonotone's last evaluation was at root.x, so `last` holds that curve.
-  out.segment = place(root.x, last);
+  // solveMonotone's last evaluation was at root.x, so `last` holds that curve; a
+  // predicted last Newton step moves it along by first order (the step is tiny: its
+  // square is below the chord tolerance).
+  const double step = root.newton_step;
+  last.end += step * last.d_end;
+  last.length += step * last.d_length;
+  out.segment = place(out.shape, last);
   return out;
 }
 

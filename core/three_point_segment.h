@@ -13,7 +13,11 @@
 // This parameterization (ours, not the paper's Lambda) covers the whole domain of
 // every alpha with m in R, and the chord angle arg E(m) increases monotonically with
 // m, so a safeguarded Newton on m (dE/dm under the same integral) fits the chord
-// angle of the triangle. A similarity transform then places the curve.
+// angle of the triangle. It works on a logit of the chord angle between its limits
+// for m -> -+inf (closed-form power-series moments), where the map is nearly linear,
+// from a closed-form quadratic model at the circle m = 0: three evaluations of E for
+// typical triangles, the last Newton step predicted rather than confirmed. A
+// similarity transform then places the curve.
 //
 // Speed: on the fixed Gauss-Legendre nodes cos/sin theta_k are computed once per
 // solve; each iteration re-evaluates only rho. Where rho varies too much for the fixed
