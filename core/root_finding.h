@@ -18,7 +18,7 @@ struct RootResult {
   double derivative = std::nan("");  // f'(x) as returned by f
   /// Nonzero only when the solve stopped on `newton_finish_tol`: the root is x +
   /// newton_step, one Newton step that was predicted, not evaluated (the caller moves
-  /// what it computed at x along by first order; the step is below ~1e-7).
+  /// what it computed at x along by first order; |step| <= newton_finish_max_step).
   double newton_step = 0.0;
   SolveReport report;
 };
@@ -34,6 +34,9 @@ struct RootOptions {
   /// The caller's bound on |f''| near the root, used until a secant estimate exists
   /// (and as a floor for it); NaN = none (no finish before two iterates).
   double initial_curvature = std::nan("");
+  /// ... and only when that step is at most this (absolute, in x): the caller's
+  /// first-order update of what it computed at x must stay exact.
+  double newton_finish_max_step = 1e-8;
   int max_iterations = 100;
 };
 
@@ -93,7 +96,8 @@ RootResult solveMonotone(F&& f, double lo, double hi, double x0, bool increasing
         curvature = std::isfinite(curvature) ? std::max(curvature, secant) : secant;
       }
       const double step = next - x;
-      if (std::isfinite(curvature) && 0.5 * curvature * step * step <= options.newton_finish_tol) {
+      if (std::isfinite(curvature) && std::abs(step) <= options.newton_finish_max_step &&
+          0.5 * curvature * step * step <= options.newton_finish_tol) {
         result.newton_step = step;
         result.report.residual = 0.5 * curvature * step * step;
         result.report.status = SolveStatus::kConverged;

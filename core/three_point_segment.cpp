@@ -28,7 +28,15 @@ constexpr double kMaxExponent = 600.0;
 // Panels are built this much narrower than allowed, so the layout stays valid while
 // Newton moves m towards the singular end and is rebuilt less often.
 constexpr double kLayoutMargin = 0.6;
-constexpr int kLogBaseNodes = 24;
+constexpr int kLogBaseNodes = 16;
+// The moment series (StandardForm::evalMoments): terms below kMomentNegligible of the
+// first are dropped (|w_k| < pi^k/k!, so ~35 terms at theta_d ~ pi, fewer when small);
+// the recurrence's bounded error must stay below kMomentTolerance of |E| (units of
+// kRounding, the double epsilon) or the quadrature is used instead.
+constexpr int kMomentMaxTerms = 64;
+constexpr double kMomentNegligible = 1e-18;
+constexpr double kMomentTolerance = 1e-14;
+constexpr double kRounding = 1.1e-16;
 constexpr double kLogBasePanelChange = 12.0;
 
 struct StandardEval {
@@ -51,8 +59,11 @@ class StandardForm {
     const Law law = lawAt(m);
     // One panel of fixed nodes (cos/sin reused) when rho is tame in tau; otherwise
     // the log-base form, whose integrand is smooth however close the branch point is.
-    if (!law.unit_alpha && !singlePanelValid(law))
+    if (!law.unit_alpha && !singlePanelValid(law)) {
+      StandardEval out;
+      if (evalMoments(law, out)) return out;
       return evalLogBase<kLogBaseNodes>(law, kLogBasePanelChange);
+    }
     if (!layoutValid(law)) buildLayout(law);
     double ex = 0, ey = 0, dx = 0, dy = 0, len = 0, dlen = 0;
     for (std::size_t k = 0; k < tau_.size(); ++k) {
@@ -118,6 +129,84 @@ class StandardForm {
     if (law.unit_alpha) return law.m == 0.0 ? INFINITY : kMaxLogRhoChange / std::abs(law.m);
     return delta * std::min(kSingularWidthRatio, kMaxLogRhoChange / std::abs(law.p));
   }
+  // Near the branch point, for p > -2 (alpha < 1/2 or alpha > 1), by moments instead of
+  // quadrature: no exp/log/sin per node. Measure sigma from the end of [0, 1] where b is
+  // larger (sigma = tau if B = 1 + A < 1, else 1 - tau) and write b = b_max (1 - a sigma)
+  // with c = b_min/b_max = e^{-|(alpha-1) m|} and a = 1 - c. With the moments
+  //   I_k = integral_0^1 sigma^k (1 - a sigma)^p dsigma,  J_k = the same with p - 1,
+  // which obey (integrate d/dsigma [sigma^k (1 - a sigma)^(p+1)] by parts, and use
+  // a sigma = 1 - (1 - a sigma))
+  //   I_0 = (1 - c^(p+1)) / (a (p + 1)),  I_k = (k I_{k-1} - c^(p+1)) / (a (k + p + 1)),
+  //   J_0 = (1 - c^p) / (a p),            J_{k+1} = (J_k - I_k) / a,
+  // and d rho/dm = tau B b^(p-1), expanding e^{i theta_d tau} gives (w_k = (+-i theta_d)^k/k!)
+  //   B < 1:  E = theta_d sum w_k I_k,                   dE/dm = theta_d B sum w_k J_{k+1},
+  //   B > 1:  E = theta_d e^m e^{i theta_d} sum w_k I_k, dE/dm = theta_d e^m e^{i theta_d} sum w_k (J_k - J_{k+1})
+  // (the lengths are the k = 0 terms; for B > 1 the sign of w_k's i is -). The forward
+  // recurrence subtracts c^(p+1) from k I_{k-1}: harmless near the branch point (c
+  // small), ruinous near the circle (c ~ 1). Its error growth is tracked term by term,
+  // and the call fails (the caller integrates instead) when the bound exceeds
+  // kMomentTolerance of |E|. (dE/dm only steers Newton and need not be as exact.)
+  bool evalMoments(const Law& law, StandardEval& out) const {
+    const double p = law.p;
+    const double log_b = (alpha_ - 1.0) * law.m;  // log B
+    if (!(p > -2.0) || log_b == 0.0) return false;
+    const double log_c = -std::abs(log_b);
+    const double a = -std::expm1(log_c);
+    const double c_p1 = std::exp((p + 1.0) * log_c);
+    // (1 - c^q) / q = -log c expm1(q log c) / (q log c), exact also as q -> 0
+    auto oneMinusPowerOver = [&](double q) {
+      const double x = q * log_c;
+      return x == 0.0 ? -log_c : -log_c * std::expm1(x) / x;
+    };
+    double i_k = oneMinusPowerOver(p + 1.0) / a;
+    double j_k = oneMinusPowerOver(p) / a;
+    const double i_0 = i_k, j_0 = j_k;
+    const double omega = log_b > 0.0 ? -theta_d_ : theta_d_;
+    double wr = 1.0, wi = 0.0;  // w_k
+    double fr = i_k, fi = 0.0, gr = 0.0, gi = 0.0;
+    double growth = 1.0;        // bound on the relative error of I_k, in units of rounding
+    double error = i_k;         // sum of |w_k| I_k growth_k
+    double j_1 = 0.0;
+    for (int k = 1; k < kMomentMaxTerms; ++k) {
+      // dE/dm term of index k - 1 (weights still w_{k-1}), from J_k = (J_{k-1} - I_{k-1}) / a
+      const double j_next = (j_k - i_k) / a;
+      const double dj = log_b > 0.0 ? j_k - j_next : j_next;
+      gr += wr * dj;
+      gi += wi * dj;
+      if (k == 1) j_1 = j_next;
+      j_k = j_next;
+      const double ki = k * i_k, num = ki - c_p1;
+      if (!(num > 0.0)) return false;  // cancelled away: the recurrence is no use here
+      growth = ki / num * (growth + 1.0);
+      i_k = num / (a * (k + p + 1.0));
+      const double scale = omega / k;  // w_k = w_{k-1} i omega / k
+      const double nr = -wi * scale, ni = wr * scale;
+      wr = nr;
+      wi = ni;
+      fr += wr * i_k;
+      fi += wi * i_k;
+      const double size = (std::abs(wr) + std::abs(wi)) * i_k;
+      error += size * growth;
+      if (size < kMomentNegligible * i_0) break;
+    }
+    const double f_norm = std::hypot(fr, fi);
+    if (!(error * kRounding <= kMomentTolerance * f_norm)) return false;
+    if (log_b < 0.0) {
+      const double b = std::exp(log_b);
+      out.end = theta_d_ * Vec2(fr, fi);
+      out.d_end = theta_d_ * b * Vec2(gr, gi);
+      out.length = theta_d_ * i_0;
+      out.d_length = theta_d_ * b * j_1;
+    } else {  // times e^m e^{i theta_d}
+      const double scale = theta_d_ * std::exp(law.m), ct = std::cos(theta_d_), st = std::sin(theta_d_);
+      out.end = scale * Vec2(ct * fr - st * fi, st * fr + ct * fi);
+      out.d_end = scale * Vec2(ct * gr - st * gi, st * gr + ct * gi);
+      out.length = scale * i_0;
+      out.d_length = scale * (j_0 - j_1);
+    }
+    return true;
+  }
+
   // In l = log b (b = 1 + A tau) the integrals become
   //   E = theta_d / A  integral_0^{(alpha-1)m} e^{(p+1) l} e^{i theta_d tau(l)} dl,  tau = (e^l - 1)/A,
   //   dE/dm = theta_d (1+A)/A integral e^{p l} tau e^{i theta_d tau} dl,
@@ -195,6 +284,8 @@ class StandardForm {
     weight_.clear();
     cos_.clear();
     sin_.clear();
+    const std::size_t nodes = kPanelNodes * (cuts_.size() - 1);  // one allocation each
+    for (auto* v : {&tau_, &tau_c_, &weight_, &cos_, &sin_}) v->reserve(nodes);
     const bool from_end = (law.side == Side::kEnd);
     for (std::size_t i = 0; i + 1 < cuts_.size(); ++i) {
       const double lo = cuts_[i], w = cuts_[i + 1] - cuts_[i];
@@ -204,8 +295,9 @@ class StandardForm {
         tau_.push_back(t);
         tau_c_.push_back(from_end ? x_node : 1.0 - x_node);
         weight_.push_back(w * rule.weight[k]);
-        cos_.push_back(std::cos(theta_d_ * t));
-        sin_.push_back(std::sin(theta_d_ * t));
+        const Vec2 u = unitVector(theta_d_ * t);
+        cos_.push_back(u.x());
+        sin_.push_back(u.y());
       }
     }
   }
@@ -339,8 +431,9 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
   auto residual = [&](double m) {
     last = form.eval(m);
     const double phi = last.chordAngle();
-    // rounding can put phi on a limit at the far end of the bracket: same sign there
-    if (!limits.contains(phi)) return std::pair{phi - target, last.dChordAngle()};
+    // rounding can put phi on a limit at the far end of the bracket: same sign there,
+    // in the logit's units at the target
+    if (!limits.contains(phi)) return std::pair{(phi - target) * dlogit(target), last.dChordAngle() * dlogit(target)};
     return std::pair{logit(phi) - target_logit, last.dChordAngle() * dlogit(phi)};
   };
   const double m_max = maxShape(alpha, options);
@@ -365,6 +458,9 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
   // The last Newton step is predicted instead of confirmed by one more evaluation.
   constexpr double kFinishSafety = 0.25;  // the secant f'' may be off by a few
   root_options.newton_finish_tol = kFinishSafety * root_options.f_tol;
+  // E and S are moved along the predicted step by first order: |E''| / |E| is O(1) in
+  // m (rho ~ e^{m tau}), so a step of 1e-8 leaves ~1e-16 relative.
+  root_options.newton_finish_max_step = 1e-8;
   RootResult root = solveMonotone(residual, lo, hi, start, true, root_options);
   out.report = root.report;
   out.shape = root.x + root.newton_step;
