@@ -21,6 +21,10 @@ constexpr double kSeriesMaxRatio = 0.1;
 // At most this turning per panel, 2 Gauss-Legendre nodes suffice: the rule's error is
 // h f/4320 with f ~ turning^4, below 3e-12 h.
 constexpr double kTwoNodeTurning = 0.01;
+// The inflection series (panelNearInflection) is used up to this turning from the
+// inflection point: its terms fall like turning^k / k!, below 1e-17 after ~20 terms.
+constexpr double kInflectionSeriesMaxTurning = 1.0;
+constexpr int kInflectionSeriesMaxTerms = 40;
 // The sampler evaluates theta and kappa exactly at least every this many samples.
 constexpr int kResyncSamples = 16;
 
@@ -256,6 +260,44 @@ bool LaSegment::panelBySeries(double s0, double h, double kappa_start, const Vec
   return true;
 }
 
+Vec2 LaSegment::inflectionOffset(double r, double heading, double turn_sign) const {
+  // Within distance r of the inflection point the turning from it is
+  // T(t) = kappa_ref L (t/L)^e / e (unitTurning with v = t/L), so with t = r w
+  //   integral_0^r e^{i (heading + turn_sign T(t))} dt = r e^{i heading} sum_k (i turn_sign T(r))^k / (k! (k e + 1)),
+  // the series of inflection_segment.cpp, exact up to rounding.
+  const double turning = turn_sign * kappa_ref_ * length_ * std::exp(exponent_ * std::log(r / length_)) / exponent_;
+  double cr = 1.0, ci = 0.0, sr = 0.0, si = 0.0;  // (i turning)^k / k!, the sum
+  for (int k = 0; k < kInflectionSeriesMaxTerms && std::abs(cr) + std::abs(ci) > 1e-18; ++k) {
+    const double w = 1.0 / (k * exponent_ + 1.0);
+    sr += cr * w;
+    si += ci * w;
+    const double scale = turning / (k + 1);
+    const double next_r = -ci * scale, next_i = cr * scale;
+    cr = next_r;
+    ci = next_i;
+  }
+  const double c = std::cos(heading), sn = std::sin(heading);
+  return r * Vec2(c * sr - sn * si, sn * sr + c * si);
+}
+
+bool LaSegment::panelNearInflection(double s0, double s1, Vec2& delta) const {
+  if (law_ != Law::kPower || !(v0_ == 0.0 || v1_ == 0.0)) return false;
+  const bool at_start = (v0_ == 0.0);
+  const double r_far = at_start ? s1 : length_ - s0;  // the panel's far end from the inflection
+  const double turning_far = kappa_ref_ * length_ * std::exp(exponent_ * std::log(r_far / length_)) / exponent_;
+  if (!(turning_far <= kInflectionSeriesMaxTurning)) return false;
+  if (at_start) {
+    delta = inflectionOffset(s1, theta0_, sign_) - (s0 > 0.0 ? inflectionOffset(s0, theta0_, sign_) : Vec2::Zero());
+  } else {
+    // measured backwards from the end, where the tangent angle is theta(L)
+    const double theta_end = theta(length_), r1 = length_ - s1;
+    delta = inflectionOffset(length_ - s0, theta_end + std::numbers::pi, -sign_) -
+            (r1 > 0.0 ? inflectionOffset(r1, theta_end + std::numbers::pi, -sign_) : Vec2::Zero());
+    delta = -delta;
+  }
+  return true;
+}
+
 void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relative_tolerance) const {
   if (n < 2) throw std::invalid_argument("LaSegment::sample: need at least 2 samples");
   const double h = length_ / (n - 1);
@@ -274,7 +316,10 @@ void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relativ
       const double s_prev = (i - 1) * h;
       PanelStep step;
       const bool series = panelBySeries(s_prev, s - s_prev, k, tangent, step);
-      p += series ? step.delta : integratePositionAdaptive(s_prev, s, panel_tol);
+      Vec2 delta;
+      if (series) delta = step.delta;
+      else if (!panelNearInflection(s_prev, s, delta)) delta = integratePositionAdaptive(s_prev, s, panel_tol);
+      p += delta;
       ++since_exact;
       if (series && i < n - 1 && since_exact < kResyncSamples &&
           std::abs(turned + step.turning) <= kSeriesMaxTurning) {

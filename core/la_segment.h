@@ -96,6 +96,11 @@ class LaSegment {
     double kappa_ratio;  // kappa at the panel's end over kappa at its start
   };
   bool panelBySeries(double s0, double h, double kappa_start, const Vec2& tangent_start, PanelStep& step) const;
+  // The position change over [s0, s1] near an inflection end (power law with v = 0 at
+  // one end), by the power series of the standard inflection form; false where there is
+  // no inflection end or [s0, s1] reaches too far from it for the series.
+  bool panelNearInflection(double s0, double s1, Vec2& delta) const;
+  Vec2 inflectionOffset(double r, double heading, double turn_sign) const;
   // theta(s) and kappa(s) together (they share the law's logarithm).
   void thetaKappa(double s, double& theta, double& kappa) const;
 
