@@ -28,7 +28,7 @@ constexpr double kMaxExponent = 600.0;
 // Panels are built this much narrower than allowed, so the layout stays valid while
 // Newton moves m towards the singular end and is rebuilt less often.
 constexpr double kLayoutMargin = 0.6;
-constexpr int kLogBaseNodes = 16;
+constexpr int kLogBaseNodes = 24;
 // The moment series (StandardForm::evalMoments): terms below kMomentNegligible of the
 // first are dropped (|w_k| < pi^k/k!, so ~35 terms at theta_d ~ pi, fewer when small);
 // the recurrence's bounded error must stay below kMomentTolerance of |E| (units of
@@ -212,7 +212,10 @@ class StandardForm {
   //   dE/dm = theta_d (1+A)/A integral e^{p l} tau e^{i theta_d tau} dl,
   // an entire integrand: the singularity of b^p at b = 0 is pushed to l = -inf. On each
   // panel the exponents (and theta) change by at most kLogBasePanelChange, which
-  // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!).
+  // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!; 16 nodes
+  // lost ~1e-13 at |m| = 30 and 1e-7 in m on three_point_segment_test's
+  // RoundTripNearTheBranchPoint with the moment path off). Used where the moment
+  // series (evalMoments) does not apply.
   template <int Nodes>
   StandardEval evalLogBase(const Law& law, double panel_change) const {
     const double range = (alpha_ - 1.0) * law.m;  // log(1 + A), exactly
@@ -345,20 +348,21 @@ Vec2 powerMoment(double q, double theta) {
 
 std::complex<double> toComplex(const Vec2& v) { return {v.x(), v.y()}; }
 
-// The chord angles phi(m) tends to as m -> -inf and m -> +inf. The limit shapes are
-// powers of tau: for alpha > 1, rho -> const * tau^p as m -> +inf (rho(0) -> 0); for
-// alpha < 0, rho -> const * tau^p as m -> -inf (rho(0) -> inf, integrable since
-// p > -1: the inflection-start segment). So one limit is arg M(p) and the other
-// theta_d minus it (reversal: m -> -m, phi -> theta_d - phi). For 0 <= alpha <= 1
-// rho^p is not integrable and the limits are 0 and theta_d.
+}  // namespace
+
 ChordAngleRange chordAngleLimits(double alpha, double theta_d) {
+  // The limit shapes are powers of tau: for alpha > 1, rho -> const * tau^p as m -> +inf
+  // (rho(0) -> 0); for alpha < 0, rho -> const * tau^p as m -> -inf (rho(0) -> inf,
+  // integrable since p > -1: the inflection-start segment). So one limit is arg M(p)
+  // and the other theta_d minus it (reversal: m -> -m, phi -> theta_d - phi). For
+  // 0 <= alpha <= 1, tau^p is not integrable and the limits are 0 and theta_d.
+  if (std::isnan(alpha) || !(theta_d > 0.0 && theta_d < std::numbers::pi)) return {};
+  if (std::isinf(alpha)) return {0.5 * theta_d, 0.5 * theta_d};
   if (!(alpha < 0.0 || alpha > 1.0)) return {0.0, theta_d};
   const Vec2 moment = powerMoment(1.0 / (alpha - 1.0), theta_d);
   const double limit = std::atan2(moment.y(), moment.x());
   return alpha < 0.0 ? ChordAngleRange{limit, theta_d - limit} : ChordAngleRange{theta_d - limit, limit};
 }
-
-}  // namespace
 
 ChordAngleRange reachableChordAngles(double alpha, double theta_d, const ThreePointOptions& options) {
   if (std::isnan(alpha) || !(theta_d > 0.0 && theta_d < std::numbers::pi)) return {};

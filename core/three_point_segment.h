@@ -45,6 +45,13 @@ struct ThreePointOptions {
 SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1, const Vec2& q2,
                                     const ThreePointOptions& options = {});
 
+/// The chord angles phi(m) tends to as the curvature ratio goes to 0 or infinity
+/// (m -> -+inf), in closed form: for alpha < 0 the limit shapes are the segments with an
+/// inflection at one end, for alpha > 1 those with zero radius at one end (rho ~ tau^p,
+/// p = 1/(alpha - 1)); for 0 <= alpha <= 1 they are (0, theta_d). The reachable range
+/// (bounded |m|) lies strictly inside. alpha = +-inf: theta_d / 2 (lo == hi).
+ChordAngleRange chordAngleLimits(double alpha, double theta_d);
+
 /// The chord angles the construction reaches for this alpha and turning angle
 /// (0 < theta_d < pi). For alpha = +-inf only theta_d / 2 (lo == hi).
 ChordAngleRange reachableChordAngles(double alpha, double theta_d,
