@@ -35,6 +35,14 @@ std::string describe(double alpha, double length, double k0, double k1) {
          " kappa_start=" + std::to_string(k0) + " kappa_end=" + std::to_string(k1);
 }
 
+// kSeriesRatioLimit[T] = 1e-17^(1/(T+1)): a series whose terms fall by a ratio r is
+// truncated after degree T with a tail below 1e-17 of its first term when r is at most this.
+const std::array<double, 64> kSeriesRatioLimit = [] {
+  std::array<double, 64> limit{};
+  for (std::size_t t = 0; t < limit.size(); ++t) limit[t] = std::pow(1e-17, 1.0 / (t + 1.0));
+  return limit;
+}();
+
 // cos and sin of a small angle (|a| <= kSeriesMaxTurning) by Taylor polynomials in
 // a^2 (terms to a^12 and a^11: the next are below 1e-17 there).
 inline void smallSinCos(double a, double& c, double& s) {
@@ -44,6 +52,16 @@ inline void smallSinCos(double a, double& c, double& s) {
   const double a2 = a * a;
   c = 1.0 + a2 * (c2 + a2 * (c4 + a2 * (c6 + a2 * (c8 + a2 * (c10 + a2 * c12)))));
   s = a * (1.0 + a2 * (s3 + a2 * (s5 + a2 * (s7 + a2 * (s9 + a2 * s11)))));
+}
+
+// The same for |a| <= kSimpsonTurning / 2 (a Simpson panel's midpoint): terms to a^6
+// and a^5 suffice (the next are below 1e-20 there).
+inline void tinySinCos(double a, double& c, double& s) {
+  constexpr double c2 = -1.0 / 2, c4 = 1.0 / 24, c6 = -1.0 / 720;
+  constexpr double s3 = -1.0 / 6, s5 = 1.0 / 120;
+  const double a2 = a * a;
+  c = 1.0 + a2 * (c2 + a2 * (c4 + a2 * c6));
+  s = a * (1.0 + a2 * (s3 + a2 * s5));
 }
 
 }  // namespace
@@ -181,7 +199,13 @@ double LaSegment::unitTurning(double s) const {
 double LaSegment::theta(double s) const { return theta0_ + sign_ * kappa_ref_ * unitTurning(s); }
 
 void LaSegment::thetaKappa(double s, double& th, double& k) const {
-  if (law_ != Law::kPower || v0_ != 1.0) {
+  if (law_ == Law::kPower && v0_ == 0.0) {  // inflection start: both from log v (-inf at s = 0)
+    const double y = std::log(v(s));
+    th = theta0_ + sign_ * kappa_ref_ * std::exp(exponent_ * y) / (exponent_ * dv_);
+    k = sign_ * kappa_ref_ * std::exp(-y / alpha_);
+    return;
+  }
+  if (law_ != Law::kPower) {
     th = theta(s);
     k = kappa(s);
     return;
@@ -231,10 +255,10 @@ bool LaSegment::panelBySeries(double s0, double h, double kappa_start, const Vec
   if (ratio_bound > kSeriesMaxRatio) return false;
 
   const double k_h = kappa_start * h;  // turning of the panel to first order
-  int terms = 0;  // enough that the tail is below 1e-17 of the panel length (and relative)
-  for (double bound = std::max(std::abs(k_h), 1.0); terms < kSeriesTerms && bound * ratio_bound > 1e-17;
-       bound *= ratio_bound)
-    ++terms;
+  // enough terms that the tail is below 1e-17 of the panel length (and relative): with
+  // |k_h| <= 1 (a larger panel turning fails the kSeriesMaxTurning test below anyway)
+  int terms = 0;
+  while (terms < kSeriesTerms && ratio_bound > kSeriesRatioLimit[terms]) ++terms;
   auto turningAt = [&](double t) {  // turning over [s0, s0 + t h]
     const double x = x_end * t;
     double g = series_[terms];
@@ -256,7 +280,7 @@ bool LaSegment::panelBySeries(double s0, double h, double kappa_start, const Vec
 
   step.simpson = std::abs(step.turning) <= kSimpsonTurning;
   if (step.simpson) {  // the caller completes delta with the end tangent
-    smallSinCos(0.5 * k_h * g_half, step.mid_cos, step.mid_sin);
+    tinySinCos(0.5 * k_h * g_half, step.mid_cos, step.mid_sin);
     return true;
   }
   const auto& rule = gaussLegendre<4>();
