@@ -1,8 +1,8 @@
 #include "core/three_point_segment.h"
 
 #include <algorithm>
-#include <complex>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -29,6 +29,7 @@ constexpr double kMaxExponent = 600.0;
 // Newton moves m towards the singular end and is rebuilt less often.
 constexpr double kLayoutMargin = 0.6;
 constexpr int kLogBaseNodes = 24;
+constexpr double kLogBasePanelChange = 12.0;
 // The moment series (StandardForm::evalMoments): terms below kMomentNegligible of the
 // first are dropped (|w_k| < pi^k/k!, so ~35 terms at theta_d ~ pi, fewer when small);
 // the recurrence's bounded error must stay below kMomentTolerance of |E| (units of
@@ -37,7 +38,6 @@ constexpr int kMomentMaxTerms = 64;
 constexpr double kMomentNegligible = 1e-18;
 constexpr double kMomentTolerance = 1e-14;
 constexpr double kRounding = 1.1e-16;
-constexpr double kLogBasePanelChange = 12.0;
 
 struct StandardEval {
   Vec2 end = Vec2::Zero();     // E(m)
