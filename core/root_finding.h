@@ -28,12 +28,9 @@ struct RootOptions {
   double f_tol = 0.0;    // absolute: stop when |f(x)| <= f_tol
   /// Absolute, in units of f; 0 = off. Also stop when one more Newton step d = -f/f'
   /// is predicted to land within this: |f''| d^2 / 2 <= newton_finish_tol, with f''
-  /// estimated from f' at the last two iterates (or given by `initial_curvature`
-  /// before there are two). Saves the evaluation that would only confirm the root.
+  /// estimated from f' at the last two iterates (so never at the first). Saves the
+  /// evaluation that would only confirm the root.
   double newton_finish_tol = 0.0;
-  /// The caller's bound on |f''| near the root, used until a secant estimate exists
-  /// (and as a floor for it); NaN = none (no finish before two iterates).
-  double initial_curvature = std::nan("");
   /// ... and only when that step is at most this (absolute, in x): the caller's
   /// first-order update of what it computed at x must stay exact.
   double newton_finish_max_step = 1e-8;
@@ -89,12 +86,9 @@ RootResult solveMonotone(F&& f, double lo, double hi, double x0, bool increasing
     }
     double next = x - v / d;
     if (options.newton_finish_tol > 0.0 && std::isfinite(next) && lo < next && next < hi) {
-      // secant estimate of f'' (a floor from the caller guards a lucky small one)
-      double curvature = options.initial_curvature;
-      if (std::isfinite(prev_d) && x != prev_x) {
-        const double secant = std::abs((d - prev_d) / (x - prev_x));
-        curvature = std::isfinite(curvature) ? std::max(curvature, secant) : secant;
-      }
+      // secant estimate of f'' from the last two iterates
+      const double curvature =
+          (std::isfinite(prev_d) && x != prev_x) ? std::abs((d - prev_d) / (x - prev_x)) : std::nan("");
       const double step = next - x;
       if (std::isfinite(curvature) && std::abs(step) <= options.newton_finish_max_step &&
           0.5 * curvature * step * step <= options.newton_finish_tol) {
