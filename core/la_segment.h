@@ -91,11 +91,20 @@ class LaSegment {
   Vec2 integratePositionAdaptive(double s0, double s1, double abs_tol) const;
   // One panel of the sampler; returns false where the series is not accurate enough.
   struct PanelStep {
-    Vec2 delta;          // position change over the panel
     double turning;      // theta change
     double kappa_ratio;  // kappa at the panel's end over kappa at its start
+    // Small turning: Simpson's rule, which the caller completes with the end tangent;
+    // (mid_cos, mid_sin) rotate the start tangent to the midpoint's. Otherwise `delta`.
+    bool simpson;
+    double mid_cos, mid_sin;
+    Vec2 delta;          // position change over the panel (4-point Gauss-Legendre)
   };
   bool panelBySeries(double s0, double h, double kappa_start, const Vec2& tangent_start, PanelStep& step) const;
+  // The position change over [s0, s1] near an inflection end (power law with v = 0 at
+  // one end), by the power series of the standard inflection form; false where there is
+  // no inflection end or [s0, s1] reaches too far from it for the series.
+  bool panelNearInflection(double s0, double s1, Vec2& delta) const;
+  Vec2 inflectionOffset(double r, double heading, double turn_sign) const;
   // theta(s) and kappa(s) together (they share the law's logarithm).
   void thetaKappa(double s, double& theta, double& kappa) const;
 
@@ -111,6 +120,7 @@ class LaSegment {
   double kappa_ref_ = 0.0;
   double v0_ = 1.0, v1_ = 1.0, dv_ = 0.0;  // v at s = 0 and s = L, slope
   double exponent_ = 0.0;  // e = 1 - 1/alpha, power of v in the turning integral
+  double series_rate_ = 1.0;  // max(1, |e|, |1/alpha|): the series' ratio per unit of |x|
   // Taylor coefficients g_k of the turning over a panel in the law's local variable
   // (see panelBySeries); they depend on alpha only.
   static constexpr int kSeriesTerms = 24;

@@ -14,13 +14,26 @@ namespace la {
 
 struct RootResult {
   double x = std::nan("");
-  double value = std::nan("");  // f(x)
+  double value = std::nan("");       // f(x)
+  double derivative = std::nan("");  // f'(x) as returned by f
+  /// Nonzero only when the solve stopped on `newton_finish_tol`: the root is x +
+  /// newton_step, one Newton step that was predicted, not evaluated (the caller moves
+  /// what it computed at x along by first order; |step| <= newton_finish_max_step).
+  double newton_step = 0.0;
   SolveReport report;
 };
 
 struct RootOptions {
   double x_tol = 1e-14;  // relative: stop when the bracket is below x_tol * (1 + |x|)
   double f_tol = 0.0;    // absolute: stop when |f(x)| <= f_tol
+  /// Absolute, in units of f; 0 = off. Also stop when one more Newton step d = -f/f'
+  /// is predicted to land within this: |f''| d^2 / 2 <= newton_finish_tol, with f''
+  /// estimated from f' at the last two iterates (so never at the first). Saves the
+  /// evaluation that would only confirm the root.
+  double newton_finish_tol = 0.0;
+  /// ... and only when that step is at most this (absolute, in x): the caller's
+  /// first-order update of what it computed at x must stay exact.
+  double newton_finish_max_step = 1e-8;
   int max_iterations = 100;
 };
 
@@ -39,10 +52,12 @@ RootResult solveMonotone(F&& f, double lo, double hi, double x0, bool increasing
   bool below_seen = false, above_seen = false;  // f < 0 and f > 0 both observed
   bool lo_tried = false, hi_tried = false;
   double x = x0;
+  double prev_x = std::nan(""), prev_d = std::nan("");
   for (int iter = 1; iter <= options.max_iterations; ++iter) {
     const auto [v, d] = f(x);
     result.x = x;
     result.value = v;
+    result.derivative = d;
     result.report.iterations = iter;
     result.report.residual = std::abs(v);
     if (!std::isfinite(v)) {
@@ -70,6 +85,22 @@ RootResult solveMonotone(F&& f, double lo, double hi, double x0, bool increasing
       return result;
     }
     double next = x - v / d;
+    if (options.newton_finish_tol > 0.0 && std::isfinite(next) && lo < next && next < hi) {
+      // secant estimate of f'' from the last two iterates
+      const double curvature =
+          (std::isfinite(prev_d) && x != prev_x) ? std::abs((d - prev_d) / (x - prev_x)) : std::nan("");
+      const double step = next - x;
+      if (std::isfinite(curvature) && std::abs(step) <= options.newton_finish_max_step &&
+          0.5 * curvature * step * step <= options.newton_finish_tol) {
+        result.newton_step = step;
+        result.report.residual = 0.5 * curvature * step * step;
+        result.report.status = SolveStatus::kConverged;
+        result.report.message = "converged: last Newton step predicted";
+        return result;
+      }
+    }
+    prev_x = x;
+    prev_d = d;
     // A Newton step past an end that was never evaluated tries that end once: if the
     // sign does not change there, the root is outside and the next pass says so,
     // instead of bisecting all the way to the end.

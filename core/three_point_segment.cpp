@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -29,16 +30,20 @@ constexpr double kMaxExponent = 600.0;
 constexpr double kLayoutMargin = 0.6;
 constexpr int kLogBaseNodes = 24;
 constexpr double kLogBasePanelChange = 12.0;
-// The rough rule for Newton's first steps: 8 nodes over changes of 4 per panel give
-// ~(2^16 / 16!) ~ 3e-9 relative, plenty until the chord angle is within 1e-5.
-constexpr int kRoughNodes = 8;
-constexpr double kRoughPanelChange = 4.0;
-constexpr double kRoughStageTolerance = 1e-5;  // in the logit of the chord angle
+// The moment series (StandardForm::evalMoments): terms below kMomentNegligible of the
+// first are dropped (|w_k| < pi^k/k!, so ~35 terms at theta_d ~ pi, fewer when small);
+// the recurrence's bounded error must stay below kMomentTolerance of |E| (units of
+// kRounding, the double epsilon) or the quadrature is used instead.
+constexpr int kMomentMaxTerms = 64;
+constexpr double kMomentNegligible = 1e-18;
+constexpr double kMomentTolerance = 1e-14;
+constexpr double kRounding = 1.1e-16;
 
 struct StandardEval {
   Vec2 end = Vec2::Zero();     // E(m)
   Vec2 d_end = Vec2::Zero();   // dE/dm
   double length = 0.0;         // S(m) = integral of rho dtheta
+  double d_length = 0.0;       // dS/dm
   double chordAngle() const { return std::atan2(end.y(), end.x()); }
   double dChordAngle() const { return cross(end, d_end) / end.squaredNorm(); }
 };
@@ -50,15 +55,17 @@ class StandardForm {
  public:
   StandardForm(double alpha, double theta_d) : alpha_(alpha), theta_d_(theta_d) {}
 
-  /// `rough`: about 1e-6 relative instead of 1e-15, for Newton's first steps.
-  StandardEval eval(double m, bool rough = false) {
+  StandardEval eval(double m) {
     const Law law = lawAt(m);
     // One panel of fixed nodes (cos/sin reused) when rho is tame in tau; otherwise
     // the log-base form, whose integrand is smooth however close the branch point is.
-    if (!law.unit_alpha && !singlePanelValid(law))
-      return rough ? evalLogBase<kRoughNodes>(law, kRoughPanelChange) : evalLogBase<kLogBaseNodes>(law, kLogBasePanelChange);
+    if (!law.unit_alpha && !singlePanelValid(law)) {
+      StandardEval out;
+      if (evalMoments(law, out)) return out;
+      return evalLogBase<kLogBaseNodes>(law, kLogBasePanelChange);
+    }
     if (!layoutValid(law)) buildLayout(law);
-    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
+    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0, dlen = 0;
     for (std::size_t k = 0; k < tau_.size(); ++k) {
       const double t = tau_[k];
       double rho, drho;
@@ -78,11 +85,13 @@ class StandardForm {
       dx += wd * cos_[k];
       dy += wd * sin_[k];
       len += wr;
+      dlen += wd;
     }
     StandardEval out;
     out.end = theta_d_ * Vec2(ex, ey);
     out.d_end = theta_d_ * Vec2(dx, dy);
     out.length = theta_d_ * len;
+    out.d_length = theta_d_ * dlen;
     return out;
   }
 
@@ -120,12 +129,93 @@ class StandardForm {
     if (law.unit_alpha) return law.m == 0.0 ? INFINITY : kMaxLogRhoChange / std::abs(law.m);
     return delta * std::min(kSingularWidthRatio, kMaxLogRhoChange / std::abs(law.p));
   }
+  // Near the branch point, for p > -2 (alpha < 1/2 or alpha > 1), by moments instead of
+  // quadrature: no exp/log/sin per node. Measure sigma from the end of [0, 1] where b is
+  // larger (sigma = tau if B = 1 + A < 1, else 1 - tau) and write b = b_max (1 - a sigma)
+  // with c = b_min/b_max = e^{-|(alpha-1) m|} and a = 1 - c. With the moments
+  //   I_k = integral_0^1 sigma^k (1 - a sigma)^p dsigma,  J_k = the same with p - 1,
+  // which obey (integrate d/dsigma [sigma^k (1 - a sigma)^(p+1)] by parts, and use
+  // a sigma = 1 - (1 - a sigma))
+  //   I_0 = (1 - c^(p+1)) / (a (p + 1)),  I_k = (k I_{k-1} - c^(p+1)) / (a (k + p + 1)),
+  //   J_0 = (1 - c^p) / (a p),            J_{k+1} = (J_k - I_k) / a,
+  // and d rho/dm = tau B b^(p-1), expanding e^{i theta_d tau} gives (w_k = (+-i theta_d)^k/k!)
+  //   B < 1:  E = theta_d sum w_k I_k,                   dE/dm = theta_d B sum w_k J_{k+1},
+  //   B > 1:  E = theta_d e^m e^{i theta_d} sum w_k I_k, dE/dm = theta_d e^m e^{i theta_d} sum w_k (J_k - J_{k+1})
+  // (the lengths are the k = 0 terms; for B > 1 the sign of w_k's i is -). The forward
+  // recurrence subtracts c^(p+1) from k I_{k-1}: harmless near the branch point (c
+  // small), ruinous near the circle (c ~ 1). Its error growth is tracked term by term,
+  // and the call fails (the caller integrates instead) when the bound exceeds
+  // kMomentTolerance of |E|. (dE/dm only steers Newton and need not be as exact.)
+  bool evalMoments(const Law& law, StandardEval& out) const {
+    const double p = law.p;
+    const double log_b = (alpha_ - 1.0) * law.m;  // log B
+    if (!(p > -2.0) || log_b == 0.0) return false;
+    const double log_c = -std::abs(log_b);
+    const double a = -std::expm1(log_c);
+    const double c_p1 = std::exp((p + 1.0) * log_c);
+    // (1 - c^q) / q = -log c expm1(q log c) / (q log c), exact also as q -> 0
+    auto oneMinusPowerOver = [&](double q) {
+      const double x = q * log_c;
+      return x == 0.0 ? -log_c : -log_c * std::expm1(x) / x;
+    };
+    double i_k = oneMinusPowerOver(p + 1.0) / a;
+    double j_k = oneMinusPowerOver(p) / a;
+    const double i_0 = i_k, j_0 = j_k;
+    const double omega = log_b > 0.0 ? -theta_d_ : theta_d_;
+    double wr = 1.0, wi = 0.0;  // w_k
+    double fr = i_k, fi = 0.0, gr = 0.0, gi = 0.0;
+    double growth = 1.0;        // bound on the relative error of I_k, in units of rounding
+    double error = i_k;         // sum of |w_k| I_k growth_k
+    double j_1 = 0.0;
+    for (int k = 1; k < kMomentMaxTerms; ++k) {
+      // dE/dm term of index k - 1 (weights still w_{k-1}), from J_k = (J_{k-1} - I_{k-1}) / a
+      const double j_next = (j_k - i_k) / a;
+      const double dj = log_b > 0.0 ? j_k - j_next : j_next;
+      gr += wr * dj;
+      gi += wi * dj;
+      if (k == 1) j_1 = j_next;
+      j_k = j_next;
+      const double ki = k * i_k, num = ki - c_p1;
+      if (!(num > 0.0)) return false;  // cancelled away: the recurrence is no use here
+      growth = ki / num * (growth + 1.0);
+      i_k = num / (a * (k + p + 1.0));
+      const double scale = omega / k;  // w_k = w_{k-1} i omega / k
+      const double nr = -wi * scale, ni = wr * scale;
+      wr = nr;
+      wi = ni;
+      fr += wr * i_k;
+      fi += wi * i_k;
+      const double size = (std::abs(wr) + std::abs(wi)) * i_k;
+      error += size * growth;
+      if (size < kMomentNegligible * i_0) break;
+    }
+    const double f_norm = std::hypot(fr, fi);
+    if (!(error * kRounding <= kMomentTolerance * f_norm)) return false;
+    if (log_b < 0.0) {
+      const double b = std::exp(log_b);
+      out.end = theta_d_ * Vec2(fr, fi);
+      out.d_end = theta_d_ * b * Vec2(gr, gi);
+      out.length = theta_d_ * i_0;
+      out.d_length = theta_d_ * b * j_1;
+    } else {  // times e^m e^{i theta_d}
+      const double scale = theta_d_ * std::exp(law.m), ct = std::cos(theta_d_), st = std::sin(theta_d_);
+      out.end = scale * Vec2(ct * fr - st * fi, st * fr + ct * fi);
+      out.d_end = scale * Vec2(ct * gr - st * gi, st * gr + ct * gi);
+      out.length = scale * i_0;
+      out.d_length = scale * (j_0 - j_1);
+    }
+    return true;
+  }
+
   // In l = log b (b = 1 + A tau) the integrals become
   //   E = theta_d / A  integral_0^{(alpha-1)m} e^{(p+1) l} e^{i theta_d tau(l)} dl,  tau = (e^l - 1)/A,
   //   dE/dm = theta_d (1+A)/A integral e^{p l} tau e^{i theta_d tau} dl,
   // an entire integrand: the singularity of b^p at b = 0 is pushed to l = -inf. On each
   // panel the exponents (and theta) change by at most kLogBasePanelChange, which
-  // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!).
+  // kLogBaseNodes nodes resolve to ~1e-17 (GL error ~ (change/2)^(2n) / (2n)!; 16 nodes
+  // lost ~1e-13 at |m| = 30 and 1e-7 in m on three_point_segment_test's
+  // RoundTripNearTheBranchPoint with the moment path off). Used where the moment
+  // series (evalMoments) does not apply.
   template <int Nodes>
   StandardEval evalLogBase(const Law& law, double panel_change) const {
     const double range = (alpha_ - 1.0) * law.m;  // log(1 + A), exactly
@@ -136,7 +226,7 @@ class StandardForm {
     const double exp_rate = std::max({std::abs(law.p + 1.0), std::abs(law.p), 1.0});
     const double lo = std::min(0.0, range), hi = std::max(0.0, range);
     const auto& rule = gaussLegendre<Nodes>();
-    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0;
+    double ex = 0, ey = 0, dx = 0, dy = 0, len = 0, dlen = 0;
     for (double top = hi; top > lo;) {
       const double theta_rate = theta_d_ * std::exp(top) / std::abs(law.a);
       const double bottom = std::max(lo, top - panel_change / (exp_rate + theta_rate));
@@ -153,6 +243,7 @@ class StandardForm {
         dx += w * tau * c;
         dy += w * tau * sn;
         len += wr;
+        dlen += w * tau;
       }
       top = bottom;
     }
@@ -161,6 +252,7 @@ class StandardForm {
     out.end = scale * Vec2(ex, ey);
     out.d_end = scale * law.b_end * Vec2(dx, dy);
     out.length = scale * len;
+    out.d_length = scale * law.b_end * dlen;
     return out;
   }
   bool singlePanelValid(const Law& law) const {
@@ -195,6 +287,8 @@ class StandardForm {
     weight_.clear();
     cos_.clear();
     sin_.clear();
+    const std::size_t nodes = kPanelNodes * (cuts_.size() - 1);  // one allocation each
+    for (auto* v : {&tau_, &tau_c_, &weight_, &cos_, &sin_}) v->reserve(nodes);
     const bool from_end = (law.side == Side::kEnd);
     for (std::size_t i = 0; i + 1 < cuts_.size(); ++i) {
       const double lo = cuts_[i], w = cuts_[i + 1] - cuts_[i];
@@ -204,8 +298,9 @@ class StandardForm {
         tau_.push_back(t);
         tau_c_.push_back(from_end ? x_node : 1.0 - x_node);
         weight_.push_back(w * rule.weight[k]);
-        cos_.push_back(std::cos(theta_d_ * t));
-        sin_.push_back(std::sin(theta_d_ * t));
+        const Vec2 u = unitVector(theta_d_ * t);
+        cos_.push_back(u.x());
+        sin_.push_back(u.y());
       }
     }
   }
@@ -231,7 +326,43 @@ SegmentSolve badInput(SolveReport report) {
   return out;
 }
 
+// M(q) = integral_0^1 tau^q e^{i theta tau} dtau = sum_k (i theta)^k / (k! (k + q + 1))
+// for q > -1, as (real, imaginary). The terms fall like theta^k / k!: for theta < pi
+// they are below 1e-18 after ~35 terms; the largest is ~e^pi, so ~2 digits cancel at
+// worst (the same series as inflection_segment.cpp's).
+Vec2 powerMoment(double q, double theta) {
+  constexpr int kMaxTerms = 60;
+  constexpr double kNegligibleTerm = 1e-18;
+  double cr = 1.0, ci = 0.0;  // (i theta)^k / k!
+  Vec2 sum = Vec2::Zero();
+  for (int k = 0; k < kMaxTerms && std::abs(cr) + std::abs(ci) >= kNegligibleTerm; ++k) {
+    const double w = 1.0 / (k + q + 1.0);
+    sum += Vec2(cr * w, ci * w);
+    const double scale = theta / (k + 1);
+    const double next_r = -ci * scale, next_i = cr * scale;
+    cr = next_r;
+    ci = next_i;
+  }
+  return sum;
+}
+
+std::complex<double> toComplex(const Vec2& v) { return {v.x(), v.y()}; }
+
 }  // namespace
+
+ChordAngleRange chordAngleLimits(double alpha, double theta_d) {
+  // The limit shapes are powers of tau: for alpha > 1, rho -> const * tau^p as m -> +inf
+  // (rho(0) -> 0); for alpha < 0, rho -> const * tau^p as m -> -inf (rho(0) -> inf,
+  // integrable since p > -1: the inflection-start segment). So one limit is arg M(p)
+  // and the other theta_d minus it (reversal: m -> -m, phi -> theta_d - phi). For
+  // 0 <= alpha <= 1, tau^p is not integrable and the limits are 0 and theta_d.
+  if (std::isnan(alpha) || !(theta_d > 0.0 && theta_d < std::numbers::pi)) return {};
+  if (std::isinf(alpha)) return {0.5 * theta_d, 0.5 * theta_d};
+  if (!(alpha < 0.0 || alpha > 1.0)) return {0.0, theta_d};
+  const Vec2 moment = powerMoment(1.0 / (alpha - 1.0), theta_d);
+  const double limit = std::atan2(moment.y(), moment.x());
+  return alpha < 0.0 ? ChordAngleRange{limit, theta_d - limit} : ChordAngleRange{theta_d - limit, limit};
+}
 
 ChordAngleRange reachableChordAngles(double alpha, double theta_d, const ThreePointOptions& options) {
   if (std::isnan(alpha) || !(theta_d > 0.0 && theta_d < std::numbers::pi)) return {};
@@ -290,39 +421,53 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
 
   StandardForm form(alpha, theta_d);
   StandardEval last;
-  // Newton on the logit of the chord angle, log(phi / (theta_d - phi)): the chord angle
-  // saturates towards its limits like a logistic curve in m, which plain Newton
-  // approaches from one side in many small steps; in the logit it is nearly straight.
-  auto logit = [&](double phi) { return std::log(phi / (theta_d - phi)); };
+  // Newton on a logit of the chord angle, g = log((phi - lo) / (hi - phi)), with lo, hi
+  // the limits of phi(m) for m -> -+inf: phi approaches them exponentially in m, so g
+  // is nearly linear in m (slope ~|alpha| or |alpha - 1| at both ends) and Newton
+  // converges quadratically from the start below; with (0, theta_d) instead it crawls
+  // along the saturated ends (alpha = -3: 11 evaluations instead of 3). A target
+  // outside (lo, hi) is unreachable; the plain logit then leads to that report.
+  ChordAngleRange limits = chordAngleLimits(alpha, theta_d);
+  if (!limits.contains(target)) limits = {0.0, theta_d};
+  auto logit = [&](double phi) { return std::log((phi - limits.lo) / (limits.hi - phi)); };
+  auto dlogit = [&](double phi) { return 1.0 / (phi - limits.lo) + 1.0 / (limits.hi - phi); };
   const double target_logit = logit(target);
-  bool rough = false;
   auto residual = [&](double m) {
-    last = form.eval(m, rough);
+    last = form.eval(m);
     const double phi = last.chordAngle();
-    if (!(phi > 0.0 && phi < theta_d)) return std::pair{phi - target, last.dChordAngle()};
-    return std::pair{logit(phi) - target_logit, last.dChordAngle() * theta_d / (phi * (theta_d - phi))};
+    // rounding can put phi on a limit at the far end of the bracket: same sign there,
+    // in the logit's units at the target
+    if (!limits.contains(phi)) return std::pair{(phi - target) * dlogit(target), last.dChordAngle() * dlogit(target)};
+    return std::pair{logit(phi) - target_logit, last.dChordAngle() * dlogit(phi)};
   };
   const double m_max = maxShape(alpha, options);
   const bool up = target > 0.5 * theta_d;  // chord angle grows with m; circle at m = 0
+  const double lo = up ? 0.0 : -m_max, hi = up ? m_max : 0.0;
   RootOptions root_options;
-  // |d logit / d phi| >= 4 / theta_d, so this keeps |phi - target| <= chord_tolerance * theta_d
-  root_options.f_tol = 4.0 * options.chord_tolerance;
+  // |phi - target| <= chord_tolerance * theta_d to first order (dg/dphi >= 4 / theta_d)
+  root_options.f_tol = options.chord_tolerance * theta_d * dlogit(target);
   root_options.x_tol = 1e-15;
   root_options.max_iterations = options.max_iterations;
-  // Two stages: rough evaluations to get close, then the full rule from there (Newton
-  // needs one or two steps). The bracket is the whole range both times, so the second
-  // stage still finds the root, or its absence, if the rough one was misled.
-  rough = true;
-  RootOptions rough_options = root_options;
-  rough_options.f_tol = kRoughStageTolerance;
-  const double lo = up ? 0.0 : -m_max, hi = up ? m_max : 0.0;
-  const RootResult first = solveMonotone(residual, lo, hi, 0.0, true, rough_options);
-  rough = false;
-  const double start = std::isfinite(first.x) ? std::clamp(first.x, lo, hi) : 0.0;
+  // Start: the quadratic Taylor model of g at the circle m = 0, in closed form:
+  // log rho = m tau + (alpha-1) m^2 (tau - tau^2)/2 + O(m^3), so with M_k = powerMoment(k)
+  // E ~ M_0, dE/dm ~ M_1, d2E/dm2 ~ (2-alpha) M_2 + (alpha-1) M_1 (times theta_d), and
+  // phi' = Im(E'/E), phi'' = Im(E''/E - (E'/E)^2); dg/dphi is stationary at phi = theta_d/2.
+  const std::complex<double> e0 = toComplex(powerMoment(0.0, theta_d)), e1 = toComplex(powerMoment(1.0, theta_d)),
+                             e2 = (2.0 - alpha) * toComplex(powerMoment(2.0, theta_d)) + (alpha - 1.0) * e1;
+  const std::complex<double> r1 = e1 / e0, r2 = e2 / e0;
+  const double g1 = dlogit(0.5 * theta_d) * r1.imag(), g2 = dlogit(0.5 * theta_d) * (r2 - r1 * r1).imag();
+  const double disc = g1 * g1 + 2.0 * g2 * target_logit;  // root of g1 m + g2 m^2 / 2 = target near 0
+  const double guess = disc > 0.0 ? 2.0 * target_logit / (g1 + std::sqrt(disc)) : target_logit / g1;
+  const double start = std::isfinite(guess) ? std::clamp(guess, lo, hi) : 0.0;
+  // The last Newton step is predicted instead of confirmed by one more evaluation.
+  constexpr double kFinishSafety = 0.25;  // the secant f'' may be off by a few
+  root_options.newton_finish_tol = kFinishSafety * root_options.f_tol;
+  // E and S are moved along the predicted step by first order: |E''| / |E| is O(1) in
+  // m (rho ~ e^{m tau}), so a step of 1e-8 leaves ~1e-16 relative.
+  root_options.newton_finish_max_step = 1e-8;
   RootResult root = solveMonotone(residual, lo, hi, start, true, root_options);
-  root.report.iterations += first.report.iterations;
   out.report = root.report;
-  out.shape = root.x;
+  out.shape = root.x + root.newton_step;
   if (root.report.status == SolveStatus::kInfeasible) {
     out.report.message = "triangle not reachable with alpha = " + std::to_string(alpha) + ": chord angle " +
                          std::to_string(target) + " rad for turning angle " + std::to_string(theta_d) + " rad";
@@ -333,8 +478,13 @@ SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1
     return out;
   }
   if (!root.report.usable()) return out;
-  // solveMonotone's last evaluation was at root.x, so `last` holds that curve.
-  out.segment = place(root.x, last);
+  // solveMonotone's last evaluation was at root.x, so `last` holds that curve; a
+  // predicted last Newton step moves it along by first order (the step is tiny: its
+  // square is below the chord tolerance).
+  const double step = root.newton_step;
+  last.end += step * last.d_end;
+  last.length += step * last.d_length;
+  out.segment = place(out.shape, last);
   return out;
 }
 

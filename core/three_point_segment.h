@@ -13,7 +13,11 @@
 // This parameterization (ours, not the paper's Lambda) covers the whole domain of
 // every alpha with m in R, and the chord angle arg E(m) increases monotonically with
 // m, so a safeguarded Newton on m (dE/dm under the same integral) fits the chord
-// angle of the triangle. A similarity transform then places the curve.
+// angle of the triangle. It works on a logit of the chord angle between its limits
+// for m -> -+inf (closed-form power-series moments), where the map is nearly linear,
+// from a closed-form quadratic model at the circle m = 0: three evaluations of E for
+// typical triangles, the last Newton step predicted rather than confirmed. A
+// similarity transform then places the curve.
 //
 // Speed: on the fixed Gauss-Legendre nodes cos/sin theta_k are computed once per
 // solve; each iteration re-evaluates only rho. Where rho varies too much for the fixed
@@ -40,6 +44,13 @@ struct ThreePointOptions {
 /// straight line. An unreachable triangle gives kInfeasible with the reachable range.
 SegmentSolve solveThreePointSegment(double alpha, const Vec2& q0, const Vec2& q1, const Vec2& q2,
                                     const ThreePointOptions& options = {});
+
+/// The chord angles phi(m) tends to as the curvature ratio goes to 0 or infinity
+/// (m -> -+inf), in closed form: for alpha < 0 the limit shapes are the segments with an
+/// inflection at one end, for alpha > 1 those with zero radius at one end (rho ~ tau^p,
+/// p = 1/(alpha - 1)); for 0 <= alpha <= 1 they are (0, theta_d). The reachable range
+/// (bounded |m|) lies strictly inside. alpha = +-inf: theta_d / 2 (lo == hi).
+ChordAngleRange chordAngleLimits(double alpha, double theta_d);
 
 /// The chord angles the construction reaches for this alpha and turning angle
 /// (0 < theta_d < pi). For alpha = +-inf only theta_d / 2 (lo == hi).

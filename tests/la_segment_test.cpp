@@ -545,6 +545,42 @@ TEST(LaSegmentTest, SamplesAgreeWithPointEvaluation) {
   }
 }
 
+TEST(LaSegmentTest, SamplesNextToAnInflectionEndAgreeWithPointEvaluation) {
+  // Next to a zero-curvature end the sampler's panels come from the inflection power
+  // series (panelNearInflection), further on from the panel series. Truth:
+  // position(s, 1e-14), adaptive quadrature from the start. Both ends, both turning
+  // directions, alphas from nearly 0 to -8, dense and sparse sampling; every sample
+  // within 1e-12 of the length (the sampler's own target is 1e-10).
+  constexpr double kPosRelTol = 1e-12;
+  struct Case {
+    double alpha, k0, k1, length;
+  };
+  const std::vector<Case> cases = {
+      {-0.3, 0.0, 2.0, 1.5},  {-1.0, 0.0, -3.0, 1.0}, {-2.0, 0.0, 1.5, 2.0},  {-8.0, 0.0, 0.7, 3.0},
+      {-0.3, 2.0, 0.0, 1.5},  {-1.0, -3.0, 0.0, 1.0}, {-2.0, 1.5, 0.0, 2.0},  {-8.0, 0.7, 0.0, 3.0},
+  };
+  for (const Case& c : cases) {
+    const LaSegment seg(c.alpha, c.length, Vec2(0.2, -0.1), -0.6, c.k0, c.k1);
+    for (int n : {30, 1000, 4000}) {
+      const CurveSamples samples = seg.sample(n);
+      const std::string what = describe(seg) + " n=" + std::to_string(n);
+      double worst = 0.0;
+      int worst_i = 0;
+      for (int i = 0; i < n; ++i) {
+        // the first and last 40 samples (the inflection panels) and every 37th
+        if (i >= 40 && i < n - 40 && i % 37 != 0) continue;
+        const double deviation = (samples.point[i] - seg.position(samples.s[i], 1e-14)).norm();
+        if (deviation > worst) {
+          worst = deviation;
+          worst_i = i;
+        }
+        EXPECT_NEAR(samples.theta[i], seg.theta(samples.s[i]), 1e-14) << what << " i=" << i;
+      }
+      EXPECT_LE(worst, kPosRelTol * c.length) << what << ": worst deviation " << worst << " at i=" << worst_i;
+    }
+  }
+}
+
 TEST(LaSegmentTest, SampleAppendsWithOffset) {
   // sample(n, out, s_offset) appends to out and offsets s; points are unchanged.
   const LaSegment seg(0.5, 2.0, Vec2(0, 0), 0.0, 1.0, 2.0);

@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <iostream>
 #include <random>
 
 #include "core/quadrature.h"
@@ -204,6 +205,99 @@ TEST(ThreePointSegment, BadInputGivesStatusNotCrash) {
   ASSERT_TRUE(line.report.usable());
   EXPECT_EQ(line.segment->kappaStart(), 0.0);
   EXPECT_NEAR(line.segment->length(), 3.0, 1e-15);
+}
+
+
+// ---------------------------------------------------------------------------------
+// The speed paths of the solve: chord-angle limits (the logit's ends), the moment
+// series near the branch point, and the predicted last Newton step.
+
+TEST(ThreePointSegment, ChordAngleLimitsMatchTheLimitShapes) {
+  // alpha < 0: the lower limit is the chord angle of the LA segment with an inflection
+  // at its start (independent: LaSegment integrates in arc length); the upper one is
+  // theta_d minus it (reversal).
+  for (double alpha : {-5.0, -2.0, -1.0, -0.5, -0.1}) {
+    for (double theta_d : {1e-4, 0.3, 1.5, 3.0}) {
+      const LaSegment unit(alpha, 1.0, Vec2::Zero(), 0.0, 0.0, 1.0);
+      const LaSegment seg(alpha, 1.0, Vec2::Zero(), 0.0, 0.0, theta_d / unit.turning());
+      const Vec2 e = seg.end(1e-15);
+      const double want = std::atan2(e.y(), e.x());
+      const ChordAngleRange limits = chordAngleLimits(alpha, theta_d);
+      EXPECT_LE(std::abs(limits.lo - want), 1e-13 * theta_d)
+          << "alpha " << alpha << " theta_d " << theta_d << ": " << limits.lo << " vs " << want;
+      EXPECT_LE(std::abs(limits.hi - (theta_d - want)), 1e-13 * theta_d) << "alpha " << alpha;
+    }
+  }
+  // alpha > 1: the limit shape has rho(0) = 0; the reachable range at |m| = 30 (the
+  // adaptive/log-base quadrature) is within e^{-30 (alpha-1)} of it.
+  for (double alpha : {2.0, 3.0, 5.0}) {
+    for (double theta_d : {0.3, 1.5, 3.0}) {
+      const ChordAngleRange limits = chordAngleLimits(alpha, theta_d);
+      const ChordAngleRange reach = reachableChordAngles(alpha, theta_d);
+      EXPECT_LE(std::abs(limits.hi - reach.hi), 1e-11 * theta_d)
+          << "alpha " << alpha << " theta_d " << theta_d << ": " << limits.hi << " vs " << reach.hi;
+      EXPECT_LE(std::abs(limits.lo - reach.lo), 1e-11 * theta_d) << "alpha " << alpha;
+    }
+  }
+  // 0 <= alpha <= 1: (0, theta_d); a circle: theta_d / 2.
+  for (double alpha : {0.0, 0.5, 1.0}) {
+    const ChordAngleRange limits = chordAngleLimits(alpha, 1.2);
+    EXPECT_EQ(limits.lo, 0.0);
+    EXPECT_EQ(limits.hi, 1.2);
+  }
+  const ChordAngleRange circle = chordAngleLimits(std::numeric_limits<double>::infinity(), 1.2);
+  EXPECT_EQ(circle.lo, 0.6);
+  EXPECT_EQ(circle.hi, 0.6);
+  // the reachable range lies inside the limits (seeded sweep)
+  std::mt19937 rng(4242);  // seed: fixed, so failures reproduce
+  std::uniform_real_distribution<double> alpha_dist(-4.0, 4.0), turn(0.01, 3.1);
+  for (int trial = 0; trial < 60; ++trial) {
+    const double alpha = alpha_dist(rng), theta_d = turn(rng);
+    const ChordAngleRange limits = chordAngleLimits(alpha, theta_d), reach = reachableChordAngles(alpha, theta_d);
+    const double rounding = 1e-14 * theta_d;  // saturated alphas reach the limits to rounding at |m| = 30
+    EXPECT_TRUE(limits.lo <= reach.lo + rounding && reach.lo < reach.hi && reach.hi <= limits.hi + rounding)
+        << "alpha " << alpha << " theta_d " << theta_d << ": limits (" << limits.lo << ", " << limits.hi
+        << "), reachable (" << reach.lo << ", " << reach.hi << ")";
+  }
+}
+
+TEST(ThreePointSegment, RoundTripNearTheBranchPoint) {
+  // Large curvature ratios put rho's branch point next to one end of the standard form:
+  // there the solve evaluates E(m) by moment recurrences (p > -2) or log-base quadrature.
+  // Truth: the segment the triangle was made from (LaSegment, arc-length quadrature).
+  // Curvature ratios e^{+-2..6}, |alpha m| <= 14. The curve must reproduce the triangle;
+  // m itself is checked where the triangle determines it: its chord angle carries
+  // rounding ~1e-16 rad, i.e. ~1e-11 relative at theta_d = 1e-5, which near the
+  // saturated end moves m by ~1e-5 whatever the solver does.
+  std::mt19937 rng(777);  // seed: fixed, so failures reproduce
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double alphas[] = {-3.0, -1.5, -0.7, -0.2, 0.0, 0.25, 0.45, 0.8, 1.2, 2.0, 3.5};
+  const double turns[] = {1e-5, 0.05, 0.8, 2.0, 3.0};
+  double worst_gap = 0.0, worst_m = 0.0;
+  for (int trial = 0; trial < 440; ++trial) {
+    const double alpha = alphas[trial % 11], theta_d = turns[(trial / 11) % 5];
+    const double magnitude = std::min(2.0 + 4.0 * unit(rng), 14.0 / std::max(std::abs(alpha), 1.0));
+    const double log_ratio = (trial % 2 == 0 ? 1.0 : -1.0) * magnitude;  // log(kappa_end / kappa_start)
+    const LaSegment probe(alpha, 1.0, Vec2::Zero(), 0.0, 1.0, std::exp(log_ratio));
+    const double k0 = theta_d / probe.turning();
+    const LaSegment seg(alpha, 1.0, Vec2(0.3, -0.2), 0.4, k0, k0 * std::exp(log_ratio));
+    const Triangle t = triangleOf(seg);
+    const SegmentSolve s = solveThreePointSegment(alpha, t.q0, t.q1, t.q2);
+    const std::string what = "alpha " + std::to_string(alpha) + " theta_d " + std::to_string(theta_d) +
+                             " log ratio " + std::to_string(log_ratio);
+    ASSERT_TRUE(s.report.usable()) << what << ": " << s.report.message;
+    const double chord = (t.q2 - t.q0).norm();
+    const double gap = (s.segment->end(1e-15) - t.q2).norm() / chord;
+    const double m_error = std::abs(s.shape + log_ratio);  // m = log(rho_end / rho_start)
+    worst_gap = std::max(worst_gap, gap);
+    if (theta_d >= 0.05) worst_m = std::max(worst_m, m_error);
+    EXPECT_LE(gap, 1e-12) << what << ": end misses Q2 by " << gap << " of the chord";
+    if (theta_d >= 0.05) {
+      EXPECT_LE(m_error, 1e-8) << what << ": m " << s.shape << " vs " << -log_ratio;
+    }
+    EXPECT_LE(std::abs(wrapAngle(s.segment->theta(s.segment->length()) - seg.theta(seg.length()))), 1e-12) << what;
+  }
+  std::cout << "worst end gap " << worst_gap << ", worst m error " << worst_m << "\n";
 }
 
 }  // namespace
