@@ -15,6 +15,10 @@ namespace {
 // A segment with a zero-curvature end needs alpha < 0 (DESIGN.md section 2); the polish
 // keeps it at most this (a steeper law than that is a straight line in all but name).
 constexpr double kInflectionAlphaCap = -0.05;
+// Alpha's range is widened by this where a segment starts on its edge, and the start
+// kept this far inside the tanh map (atanh(1 - 1e-9) ~ 10.7: a finite unknown).
+constexpr double kAlphaMargin = 1e-3;
+constexpr double kTanhEdge = 1.0 - 1e-9;
 // Chords per segment of the polyline the foot points are projected on.
 constexpr int kFootSamplesPerSegment = 48;
 
@@ -22,6 +26,7 @@ constexpr int kFootSamplesPerSegment = 48;
 // at the origin, lengths in units of the points' bounding-box diagonal).
 struct Layout {
   std::size_t segments = 0;
+  std::vector<double> alpha_lo, alpha_hi;  // per segment: alpha = lo + (hi - lo) (1 + tanh w) / 2
   bool fix_start = false;
   std::vector<int> kappa_index;   // per joint: index of log|kappa|, or -1 for a fixed zero
   std::vector<double> kappa_sign;
@@ -33,7 +38,23 @@ struct Foot {
   double u = 0.0;  // fraction of the segment's length
 };
 
-bool buildChain(const double* x, const Layout& layout, std::vector<LaSegment>& out) {
+// Panels of the fixed rule that carries a segment's end to the next segment's start
+// while the optimizer runs (the final chain uses LaSegment's adaptive end instead).
+constexpr int kEndPanels = 12;
+
+// The end of a segment by a composite 4-point Gauss-Legendre rule: cheap and, for the
+// optimizer, accurate enough; the adaptive rule can take milliseconds on the extreme
+// curvature ratios a trial step may ask for.
+Vec2 approximateEnd(const LaSegment& seg) {
+  Vec2 p = seg.start();
+  const double h = seg.length() / kEndPanels;
+  for (int k = 0; k < kEndPanels; ++k)
+    p += integrateFixed<4>([&](double t) { return Vec2(unitVector(seg.theta(t))); }, k * h, (k + 1) * h);
+  return p;
+}
+
+// exact: segment ends by LaSegment::end (for the result), else approximateEnd.
+bool buildChain(const double* x, const Layout& layout, std::vector<LaSegment>& out, bool exact = false) {
   out.clear();
   Vec2 start = layout.fix_start ? Vec2::Zero() : Vec2(x[0], x[1]);
   double theta = x[layout.theta_index];
@@ -41,14 +62,16 @@ bool buildChain(const double* x, const Layout& layout, std::vector<LaSegment>& o
     return layout.kappa_index[j] < 0 ? 0.0 : layout.kappa_sign[j] * std::exp(x[layout.kappa_index[j]]);
   };
   for (std::size_t i = 0; i < layout.segments; ++i) {
-    const double length = std::exp(x[layout.length_index + i]), alpha = x[layout.alpha_index + i];
+    const double length = std::exp(x[layout.length_index + i]);
+    const double alpha = layout.alpha_lo[i] + (layout.alpha_hi[i] - layout.alpha_lo[i]) * 0.5 *
+                                                  (1.0 + std::tanh(x[layout.alpha_index + i]));
     if (!std::isfinite(length) || !std::isfinite(alpha)) return false;
     try {
       out.emplace_back(alpha, length, start, theta, kappa(i), kappa(i + 1));
     } catch (const std::invalid_argument&) {  // the step left the LA family (e.g. alpha through 0 at a zero end)
       return false;
     }
-    start = out.back().end();
+    start = exact ? out.back().end() : approximateEnd(out.back());
     theta = out.back().theta(length);
   }
   return true;
@@ -191,8 +214,20 @@ PolishResult polishChain(const std::vector<LaSegment>& segments, const std::vect
   }
   layout.length_index = static_cast<int>(x.size());
   for (const LaSegment& s : segments) x.push_back(std::log(s.length() / scale));
+  // Alpha stays inside its range through a smooth map instead of bounds (bounds make
+  // Ceres search along projected steps, each needing a new numeric Jacobian); the range
+  // is widened a little where the start sits on its edge.
   layout.alpha_index = static_cast<int>(x.size());
-  for (const LaSegment& s : segments) x.push_back(s.alpha());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = segments[i].alpha();
+    const bool zero_end = layout.kappa_index[i] < 0 || layout.kappa_index[i + 1] < 0;
+    const double lo = std::min(options.min_alpha, a) - kAlphaMargin;
+    const double hi = zero_end ? (a < kInflectionAlphaCap ? kInflectionAlphaCap : 0.5 * a)
+                               : std::max(options.max_alpha, a) + kAlphaMargin;
+    layout.alpha_lo.push_back(lo);
+    layout.alpha_hi.push_back(hi);
+    x.push_back(std::atanh(std::clamp(2.0 * (a - lo) / (hi - lo) - 1.0, -kTanhEdge, kTanhEdge)));
+  }
   layout.size = static_cast<int>(x.size());
 
   auto toWorld = [&](const std::vector<LaSegment>& chain) {
@@ -212,18 +247,12 @@ PolishResult polishChain(const std::vector<LaSegment>& segments, const std::vect
   result.rms_before = rmsOf(ChainResidual{layout, points, feet}, x) * scale;
   int iterations = 0;
   for (int round = 0; round < options.rounds; ++round) {
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<ChainResidual>(new ChainResidual{layout, points, feet});
+    auto* cost =
+        new ceres::DynamicNumericDiffCostFunction<ChainResidual, ceres::FORWARD>(new ChainResidual{layout, points, feet});
     cost->AddParameterBlock(layout.size);
     cost->SetNumResiduals(static_cast<int>(points.size()) + 2);
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, x.data());
-    for (std::size_t i = 0; i < n; ++i) {
-      const int at = layout.alpha_index + static_cast<int>(i);
-      const bool zero_end = layout.kappa_index[i] < 0 || layout.kappa_index[i + 1] < 0;
-      const double hi = zero_end ? std::max(kInflectionAlphaCap, x[at]) : std::max(options.max_alpha, x[at]);
-      problem.SetParameterLowerBound(x.data(), at, std::min(options.min_alpha, x[at]));
-      problem.SetParameterUpperBound(x.data(), at, hi);
-    }
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::DENSE_QR;
     solver.max_num_iterations = options.max_iterations;
@@ -237,7 +266,7 @@ PolishResult polishChain(const std::vector<LaSegment>& segments, const std::vect
     if (summary.initial_cost - summary.final_cost <= 1e-6 * summary.initial_cost) break;  // no more to gain
   }
   result.rms_after = rmsOf(ChainResidual{layout, points, feet}, x) * scale;
-  result.improved = result.rms_after < result.rms_before;
+  result.improved = result.rms_after < result.rms_before && buildChain(x.data(), layout, chain, true);
   if (result.improved) result.segments = toWorld(chain);
   result.report = {SolveStatus::kConverged, iterations, result.rms_after,
                    result.improved ? "polished" : "kept: the polish did not bring the chain closer"};

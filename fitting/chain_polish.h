@@ -31,10 +31,10 @@ struct PolishOptions {
   double min_alpha = -3.0, max_alpha = 3.0;
   bool fix_start = false;      // keep the chain's start point where it is
   int rounds = 3;              // foot-point projections
-  int max_iterations = 12;     // Levenberg-Marquardt steps per round
+  int max_iterations = 15;     // Levenberg-Marquardt steps per round
   /// At most this many points take part (evenly spaced along the stroke, ends kept);
   /// more add little to a fit of a few dozen unknowns and cost time.
-  std::size_t max_points = 160;
+  std::size_t max_points = 100;
 };
 
 struct PolishResult {

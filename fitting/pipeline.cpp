@@ -624,11 +624,20 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
   }
 }
 
-double maxDeviation(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
+struct PartDeviation {
+  double max = 0.0, rms = 0.0;
+};
+PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
   Curve curve;
   for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
-  const std::vector<double> d = distancesToCurve(curve, points, diag, kRefineResolution);
-  return d.empty() ? 0.0 : *std::max_element(d.begin(), d.end());
+  PartDeviation out;
+  double sum = 0.0;
+  for (double d : distancesToCurve(curve, points, diag, kRefineResolution)) {
+    out.max = std::max(out.max, d);
+    sum += d * d;
+  }
+  out.rms = points.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(points.size()));
+  return out;
 }
 
 void polishPart(PartFit& fit, const Part& part, double tol, double diag, const FitOptions& options) {
@@ -638,8 +647,11 @@ void polishPart(PartFit& fit, const Part& part, double tol, double diag, const F
   po.fix_start = part.starts_at_corner;
   const PolishResult polished = polishChain(fit.segments, part.points, po);
   if (!polished.improved) return;
-  const double before = maxDeviation(fit.segments, part.points, diag);
-  if (maxDeviation(polished.segments, part.points, diag) > std::max(tol, before)) return;
+  // Kept only where it is closer to all the points (it fits a subsample) and within the
+  // tolerance, or no further outside it than before.
+  const PartDeviation before = deviationOf(fit.segments, part.points, diag);
+  const PartDeviation after = deviationOf(polished.segments, part.points, diag);
+  if (after.rms > before.rms || after.max > std::max(tol, before.max)) return;
   fit.segments = polished.segments;
   for (std::size_t i = 0; i < fit.segments.size(); ++i) fit.reports[i].alpha = fit.segments[i].alpha();
 }

@@ -39,8 +39,9 @@ struct FitOptions {
   /// Alpha from the LCG is kept inside this range (a noisy LCG can be steep).
   double min_alpha = -3.0, max_alpha = 3.0;
   /// Stage 7: fit the G2 chain of an open part to the points by least squares
-  /// (fitting/chain_polish.h); a few milliseconds, so the live preview skips it.
-  bool polish = true;
+  /// (fitting/chain_polish.h). Opt-in: closer to the points and truer alphas, but its
+  /// numeric Jacobian costs ~20 ms on a 1,000-point stroke (6x the rest of the fit).
+  bool polish = false;
 };
 
 /// One piece of the segmentation and how its LA segment was made.

@@ -622,6 +622,40 @@ TEST_P(PipelineTruthTest, DISABLED_SegmentCountAndAlphaMatchTheTruth) {
   if (HasFailure()) std::printf("%s\n%s\n", describeTruth(base).c_str(), describeFit(r).c_str());
 }
 
+// The opt-in polish (FitOptions::polish) on every truth chain: the polished curve stays
+// within the tolerance of the noise-free truth and G2, is never further from the points
+// (rms) than the unpolished one, and its alphas are, summed over the chains, closer to
+// the truth's (the figure it exists for; printed with the unpolished one).
+TEST(PipelinePolish, StaysWithinToleranceG2AndBringsAlphaCloser) {
+  FitOptions polished;
+  polished.polish = true;
+  double error_plain = 0.0, error_polished = 0.0;
+  int counted = 0;
+  for (int index = 0; index < kCaseCount; ++index) {
+    const Truth& truth = truthCase(index);
+    const FitResult plain = fit(truth.noisy), r = fit(truth.noisy, polished);
+    SCOPED_TRACE(caseName(index, Transform::kNone));
+    ASSERT_FALSE(r.curve.pieces.empty());
+    expectDeviation(r, truth);
+    expectGaps(r);
+    EXPECT_LE(r.quality.rms_dev, plain.quality.rms_dev * (1.0 + 1e-9));
+    if (r.curve.pieces.size() != plain.curve.pieces.size()) continue;
+    const std::vector<int> match = matchSegments(r.curve, truth), match_plain = matchSegments(plain.curve, truth);
+    for (std::size_t i = 0; i < r.curve.pieces.size(); ++i) {
+      const LaSegment& want = truth.curve.pieces[match[i]].segment;
+      if (truth.samples_per_segment[match[i]] < kAlphaMinSamples || std::isinf(want.alpha()) || match[i] != match_plain[i])
+        continue;
+      error_polished += std::abs(r.curve.pieces[i].segment.alpha() - want.alpha());
+      error_plain += std::abs(plain.curve.pieces[i].segment.alpha() - want.alpha());
+      ++counted;
+    }
+  }
+  std::printf("[ polish   ] mean |alpha - truth| over %d segments: %.3f unpolished, %.3f polished\n", counted,
+              error_plain / counted, error_polished / counted);
+  ASSERT_GT(counted, 20);
+  EXPECT_LT(error_polished, error_plain);
+}
+
 std::string caseParamName(const ::testing::TestParamInfo<CaseParam>& info) {
   const auto [index, transform] = info.param;
   return caseName(index, transform);

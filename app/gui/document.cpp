@@ -16,7 +16,8 @@ nlohmann::json optionsToJson(const FitOptions& o) {
           {"significance", o.segmentation.significance},
           {"g2", toString(o.g2)},
           {"g2_threshold", o.g2_threshold},
-          {"corners", o.cleanup.detect_corners}};
+          {"corners", o.cleanup.detect_corners},
+          {"polish", o.polish}};
 }
 
 FitOptions optionsFromJson(const nlohmann::json& j) {
@@ -28,6 +29,7 @@ FitOptions optionsFromJson(const nlohmann::json& j) {
   o.g2 = g2 == "bisection" ? G2Method::kBisection : g2 == "off" ? G2Method::kOff : G2Method::kNewton;
   o.g2_threshold = j.value("g2_threshold", o.g2_threshold);
   o.cleanup.detect_corners = j.value("corners", true);
+  o.polish = j.value("polish", false);
   return o;
 }
 

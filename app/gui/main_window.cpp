@@ -281,8 +281,10 @@ void MainWindow::updatePreview() {
     return;
   QElapsedTimer clock;
   clock.start();
+  FitOptions quick = m_document.options();
+  quick.polish = false;  // the preview keeps up with the pen; the pen-up fit polishes
   try {
-    m_canvas->setPreview(fitStroke(current, m_document.options()));
+    m_canvas->setPreview(fitStroke(current, quick));
   } catch (const StrokeError&) {
     m_canvas->setPreview(std::nullopt);  // too few points yet
   }

@@ -42,6 +42,10 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   form->addRow("G2 threshold", m_threshold);
   m_corners = new QCheckBox("keep sharp corners");
   form->addRow("", m_corners);
+  m_polish = new QCheckBox("polish (least squares)");
+  m_polish->setToolTip("After pen-up, fit the whole G2 chain to the points: closer to them and truer alphas, "
+                       "about 20 ms a stroke");
+  form->addRow("", m_polish);
   m_alpha = new QDoubleSpinBox;
   m_alpha->setRange(-kAlphaRange, kAlphaRange);
   m_alpha->setSingleStep(0.1);
@@ -84,6 +88,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   connect(m_g2, &QComboBox::currentIndexChanged, this, changed);
   connect(m_threshold, &QDoubleSpinBox::valueChanged, this, changed);
   connect(m_corners, &QCheckBox::toggled, this, changed);
+  connect(m_polish, &QCheckBox::toggled, this, changed);
 }
 
 void ParameterPanel::setOptions(const FitOptions& o) {
@@ -94,6 +99,7 @@ void ParameterPanel::setOptions(const FitOptions& o) {
   m_g2->setCurrentIndex(m_g2->findData(static_cast<int>(o.g2)));
   m_threshold->setValue(std::log10(o.g2_threshold));
   m_corners->setChecked(o.cleanup.detect_corners);
+  m_polish->setChecked(o.polish);
   m_updating = false;
 }
 
@@ -117,6 +123,7 @@ FitOptions ParameterPanel::options() const {
   o.g2 = static_cast<G2Method>(m_g2->currentData().toInt());
   o.g2_threshold = std::pow(10.0, m_threshold->value());
   o.cleanup.detect_corners = m_corners->isChecked();
+  o.polish = m_polish->isChecked();
   return o;
 }
 

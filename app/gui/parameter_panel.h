@@ -34,6 +34,7 @@ class ParameterPanel : public QWidget {
   QComboBox* m_g2 = nullptr;
   QDoubleSpinBox* m_threshold = nullptr;  // log10 of the relative G2 gap
   QCheckBox* m_corners = nullptr;
+  QCheckBox* m_polish = nullptr;
   QDoubleSpinBox* m_alpha = nullptr;      // the selected segment's alpha
   QSlider* m_alpha_slider = nullptr;      // the same, in steps of kAlphaSliderStep
   FitOptions m_base;                      // the options not on the panel

@@ -54,6 +54,19 @@ void BM_FitStroke(benchmark::State& state) {
 }
 BENCHMARK(BM_FitStroke)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
 
+// The same with the least-squares polish of the G2 chain (FitOptions::polish, opt-in).
+void BM_FitStrokePolished(benchmark::State& state) {
+  const Stroke stroke = chainStroke(static_cast<int>(state.range(0)));
+  FitOptions options;
+  options.polish = true;
+  const FitResult check = fitStroke(stroke, options);
+  if (check.curve.pieces.empty()) state.SkipWithError("the stroke does not fit");
+  for (auto _ : state) benchmark::DoNotOptimize(fitStroke(stroke, options));
+  state.counters["points"] = static_cast<double>(stroke.samples.size());
+  state.counters["polish_ms"] = check.timings.polish_ms;
+}
+BENCHMARK(BM_FitStrokePolished)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+
 void BM_StageCleanup(benchmark::State& state) {
   const Stroke stroke = chainStroke(1000);
   for (auto _ : state) benchmark::DoNotOptimize(cleanStroke(stroke));
