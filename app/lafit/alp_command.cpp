@@ -93,15 +93,9 @@ void printList(const char* name, const std::vector<double>& values) {
 }  // namespace
 
 int alpCommand(const std::vector<std::string>& argv) {
-  std::set<std::string> valued = kOutputOptions;
-  valued.insert({"--degree", "--p", "--w-e", "--p-w", "--samples"});
-  std::set<std::string> flags = kOutputFlags;
-  flags.insert({"--help", "--g2", "--rational"});
-  const Args args(argv, valued, flags);
-  if (args.has("--help")) {
-    std::cout << kAlpHelp;
-    return 0;
-  }
+  const std::optional<Args> parsed = producingCommandArgs(argv, {"--degree", "--p", "--w-e", "--p-w", "--samples"}, {"--g2", "--rational"}, kAlpHelp);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (args.positional().size() != 2) throw UsageError("alp needs two end conditions X,Y,THETA,KAPPA");
   const int continuity = args.has("--g2") ? 2 : 1;
   const AlpShape shape = shapeFrom(args, 3);

@@ -44,15 +44,9 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 }  // namespace
 
 int compoundCommand(const std::vector<std::string>& argv) {
-  std::set<std::string> valued = kOutputOptions;
-  valued.insert({"--alpha0", "--alpha1", "--joint-angle"});
-  std::set<std::string> flags = kOutputFlags;
-  flags.insert("--help");
-  const Args args(argv, valued, flags);
-  if (args.has("--help")) {
-    std::cout << kHelp;
-    return 0;
-  }
+  const std::optional<Args> parsed = producingCommandArgs(argv, {"--alpha0", "--alpha1", "--joint-angle"}, {}, kHelp);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (!args.has("--alpha0") || !args.has("--alpha1")) throw UsageError("compound needs --alpha0 and --alpha1");
   if (args.positional().size() != 4) throw UsageError("compound needs four control points X,Y");
   std::array<Vec2, 4> q;

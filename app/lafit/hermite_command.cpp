@@ -47,15 +47,9 @@ nlohmann::json endJson(const HermiteEnd& e) {
 }  // namespace
 
 int hermiteCommand(const std::vector<std::string>& argv) {
-  std::set<std::string> valued = kOutputOptions;
-  valued.insert("--alpha");
-  std::set<std::string> flags = kOutputFlags;
-  flags.insert("--help");
-  const Args args(argv, valued, flags);
-  if (args.has("--help")) {
-    std::cout << kHelp;
-    return 0;
-  }
+  const std::optional<Args> parsed = producingCommandArgs(argv, {"--alpha"}, {}, kHelp);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (!args.has("--alpha")) throw UsageError("hermite needs --alpha A");
   if (args.positional().size() != 2) throw UsageError("hermite needs two ends X,Y,THETA,KAPPA (THETA in degrees)");
   const double alpha = args.number("--alpha", -1.0);

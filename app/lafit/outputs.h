@@ -1,6 +1,8 @@
 #pragma once
 // Writes a command's curves to the files named by -o/--svg/--csv/--dxf, atomically.
 
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,11 @@ namespace la::cli {
 /// Options every producing command accepts, for Args' `valued` set.
 inline const std::set<std::string> kOutputOptions = {"-o", "--svg", "--csv", "--dxf"};
 inline const std::set<std::string> kOutputFlags = {"--comb", "--y-up"};
+
+/// A producing command's arguments: its own options and flags plus the output ones and
+/// --help. On --help it prints `help` and returns std::nullopt (the command exits 0).
+std::optional<Args> producingCommandArgs(const std::vector<std::string>& argv, const std::set<std::string>& valued,
+                                         const std::set<std::string>& flags, const char* help);
 
 /// `document` is the JSON written with -o (the shared curve format plus whatever the
 /// command adds); `curves` and `points` feed the drawing formats.

@@ -30,15 +30,9 @@ Exit status: 0 solved, 1 infeasible or bad input (the reachable range is printed
 }  // namespace
 
 int segmentCommand(const std::vector<std::string>& argv) {
-  std::set<std::string> valued = kOutputOptions;
-  valued.insert({"--alpha", "--inflection"});
-  std::set<std::string> flags = kOutputFlags;
-  flags.insert("--help");
-  const Args args(argv, valued, flags);
-  if (args.has("--help")) {
-    std::cout << kHelp;
-    return 0;
-  }
+  const std::optional<Args> parsed = producingCommandArgs(argv, {"--alpha", "--inflection"}, {}, kHelp);
+  if (!parsed) return 0;
+  const Args& args = *parsed;
   if (args.positional().size() != 3) throw UsageError("segment needs three control points X,Y");
   const Vec2 q0 = parsePoint(args.positional()[0]), q1 = parsePoint(args.positional()[1]),
              q2 = parsePoint(args.positional()[2]);
