@@ -11,7 +11,8 @@
 
 #include "core/lcg.h"
 #include "core/three_point_segment.h"
-#include "fitting/chain_polish.h"
+#include "fitting/chain_fit.h"
+#include "fitting/model_selection.h"
 
 namespace la {
 namespace {
@@ -26,6 +27,7 @@ constexpr double kLcgTrim = 0.1;
 // towards which an infeasible alpha is moved.
 constexpr double kDefaultAlpha = -1.0;
 constexpr double kWidestAlpha = 0.5;
+constexpr double kPolishStartAlpha = 0.5;
 constexpr int kAlphaBisections = 12;
 constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
@@ -346,6 +348,7 @@ struct PartFit {
   std::vector<PieceReport> reports;
   std::optional<CubicBSpline> spline;
   std::vector<SplitPoint> splits;
+  std::vector<ChainFoot> feet;  // of the part's points on `segments` (from the spline parameters)
   SolveReport smoothing, g2;
 };
 
@@ -374,9 +377,10 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
   // The spline's curvature feeds segmentation and alpha, so it is fitted tighter than the
   // user's tolerance where the data allow: down to their noise floor, or a fraction of
   // the tolerance for clean data.
-  so.tolerance = std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
+  so.tolerance = options.polish ? tol : std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
   so.noise_sigma = noise.sigma;
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
+  if (std::getenv("LADBG")) std::fprintf(stderr, "smoothing: tol %g sigma %g fairness %g max %g rms %g rounds %d\n", so.tolerance, so.noise_sigma, smooth.fairness, smooth.max_error, smooth.rms_error, smooth.rounds);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
   if (!smooth.report.usable()) warnings.push_back("smoothing: " + smooth.report.message);
@@ -472,7 +476,10 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
         piece.kind = PieceKind::kInflectionEnd;
       } else {
         piece.kind = PieceKind::kThreePoint;
-        double alpha = lcg.report.usable() ? std::clamp(lcg.alpha, options.min_alpha, options.max_alpha) : kDefaultAlpha;
+        // The fit of stage 7 finds alpha from the points; it starts from the prior of its
+        // alphas, which also keeps the joint solve quick (a wild LCG slope can cost it
+        // many Newton steps).
+        double alpha = options.polish ? kPolishStartAlpha : lcg.report.usable() ? std::clamp(lcg.alpha, options.min_alpha, options.max_alpha) : kDefaultAlpha;
         Vec2 q0, q1, q2;
         chain.pieces.push_back(piece);  // controlTriangle reads only joints and angles
         if (controlTriangle(chain, i, q0, q1, q2)) {
@@ -484,7 +491,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           const auto cached = fitted_alpha.find({rep.t0, rep.t1});
           if (cached != fitted_alpha.end()) {
             alpha = cached->second;
-          } else if (members[i].size() >= kMinPointsForAlphaFit) {
+          } else if (!options.polish && members[i].size() >= kMinPointsForAlphaFit) {
             std::vector<Vec2> sample;
             const std::size_t m = members[i].size(), take = std::min(m, kAlphaPoints);
             for (std::size_t k = 0; k < take; ++k) sample.push_back(part.points[members[i][k * (m - 1) / std::max<std::size_t>(take - 1, 1)]]);
@@ -562,7 +569,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           halve[i] = true;
         }
       }
-    } else {
+    } else if (!options.polish) {
       const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
       const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
       double excess = 0.0;  // largest deviation beyond what is allowed
@@ -620,6 +627,17 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
     out.segments = std::move(res.segments);
     out.reports = std::move(reports);
     out.splits = seg.splits;
+    if (out.segments.size() == out.reports.size()) {
+      // Each point's foot from its spline parameter: the piece it falls in, and where.
+      const std::vector<std::vector<std::size_t>> held = pointsOfPieces(out.reports, smooth, period);
+      out.feet.assign(part.points.size(), ChainFoot{});
+      for (std::size_t i = 0; i < held.size(); ++i)
+        for (std::size_t k : held[i]) {
+          double t = smooth.parameters[k];
+          if (t < out.reports[i].t0) t += period;
+          out.feet[k] = {i, std::clamp((t - out.reports[i].t0) / (out.reports[i].t1 - out.reports[i].t0), 0.0, 1.0)};
+        }
+    }
     return out;
   }
 }
@@ -640,20 +658,40 @@ PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vec
   return out;
 }
 
-void polishPart(PartFit& fit, const Part& part, double tol, double diag, const FitOptions& options) {
-  PolishOptions po;
-  po.min_alpha = options.min_alpha;
-  po.max_alpha = options.max_alpha;
-  po.fix_start = part.starts_at_corner;
-  const PolishResult polished = polishChain(fit.segments, part.points, po);
-  if (!polished.improved) return;
-  // Kept only where it is closer to all the points (it fits a subsample) and within the
-  // tolerance, or no further outside it than before.
-  const PartDeviation before = deviationOf(fit.segments, part.points, diag);
-  const PartDeviation after = deviationOf(polished.segments, part.points, diag);
-  if (after.rms > before.rms || after.max > std::max(tol, before.max)) return;
-  fit.segments = polished.segments;
-  for (std::size_t i = 0; i < fit.segments.size(); ++i) fit.reports[i].alpha = fit.segments[i].alpha();
+void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag, const FitOptions& options) {
+  SelectionOptions so;
+  so.tolerance = tol;
+  ChainFitOptions& co = so.fit;
+  co.min_alpha = options.min_alpha;
+  co.max_alpha = options.max_alpha;
+  co.closed = part.closed;
+  co.fix_start = part.starts_at_corner;
+  co.fix_end = ends_at_corner;
+  co.max_points = 200; co.max_iterations = 10;
+  co.noise = noise;
+  for (const LaSegment& s : fit.segments)
+    if (!std::isfinite(s.alpha()) && s.kappaStart() == 0.0) return;  // a straight piece
+  const SelectionResult selected = selectChain(fit.segments, part.points, fit.feet, so);
+  const ChainFitResult& polished = selected.fit;
+  if (std::getenv("LADBG")) std::fprintf(stderr, "polish: %s it %d improved %d max %g tol %g splits %d collapses %d merges %d\n", polished.report.message.c_str(), polished.report.iterations, polished.improved, polished.max_distance, tol, selected.splits, selected.collapses, selected.merges);
+  if (!polished.improved && selected.splits + selected.collapses + selected.merges == 0) return;
+  std::vector<LaSegment> segments = polished.segments;
+  if (co.closed || co.fix_end) {
+    G2Options g2;
+    g2.method = options.g2;
+    g2.threshold = options.g2_threshold;
+    g2.diagonal = diag;
+    segments = snapToJoints(segments, co.closed, part.points.back(), g2);
+    if (segments.empty()) return;
+  }
+  // Kept where within the tolerance, or closer to the points than the chain it started from.
+  if (polished.max_distance > tol && polished.max_distance >= deviationOf(fit.segments, part.points, diag).max) return;
+  fit.segments = segments;
+  fit.reports.resize(segments.size(), fit.reports.back());
+  for (std::size_t i = 0; i < fit.segments.size(); ++i) {
+    fit.reports[i].alpha = fit.segments[i].alpha();
+    if (i < polished.alpha_standard_error.size()) fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
+  }
 }
 
 }  // namespace
@@ -681,9 +719,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings, r.warnings);
     // An open stroke's last part (its end is free; a part that ends at a corner must keep
     // it) is polished, and keeps the polish where it stays within the tolerance.
-    if (options.polish && fit.g2.usable() && !r.cleaned.closed && k + 1 == parts.size()) {
+    if (options.polish && fit.g2.usable()) {
       const auto tp = Clock::now();
-      polishPart(fit, parts[k], r.tolerance, diag, options);
+      const bool ends_at_corner = r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size();
+      polishPart(fit, parts[k], ends_at_corner, r.tolerance, noise.sigma, diag, options);
       r.timings.polish_ms += msSince(tp);
     }
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {

@@ -41,7 +41,7 @@ struct FitOptions {
   /// Stage 7: fit the G2 chain of an open part to the points by least squares
   /// (fitting/chain_polish.h). Opt-in: closer to the points and truer alphas, but its
   /// numeric Jacobian costs ~20 ms on a 1,000-point stroke (6x the rest of the fit).
-  bool polish = false;
+  bool polish = true;
 };
 
 /// One piece of the segmentation and how its LA segment was made.
@@ -53,6 +53,9 @@ struct PieceReport {
   double lcg_r2 = 0.0;
   double alpha = 0.0;         // alpha used (moved into the feasible range if needed)
   bool alpha_moved = false;
+  /// Standard error of the fitted alpha (stage 7, fitting/chain_fit.h): how well the
+  /// points determine it; infinite when stage 7 did not run.
+  double alpha_standard_error = INFINITY;
   int part = 0;               // which corner-to-corner part it belongs to
   int spline = -1;            // index into FitResult::splines of that part's spline (-1: a straight part)
 };

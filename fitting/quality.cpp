@@ -11,7 +11,7 @@ namespace {
 // Cell size of the edge grid, in mean polyline edge lengths: a cell holds about this
 // many edges of a curve passing through it once, and a point within the tolerance of
 // the curve finds its foot in the first ring or two of cells.
-constexpr double kEdgesPerCell = 16.0;
+constexpr double kEdgesPerCell = 4.0;
 // Cells per axis at most (memory stays below a few MB for any curve).
 constexpr int kMaxCellsPerAxis = 512;
 

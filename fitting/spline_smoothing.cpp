@@ -50,18 +50,28 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
   const int n = controlCount(breaks, closed);
   // A template spline (zero control) gives the knot vector and basis functions.
   const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
+  // The normal equations are banded (a point touches 4 consecutive control points; the
+  // periodic case wraps around): accumulated dense when small, else as sparse triplets.
+  const bool dense = n <= kDenseLimit;
+  Eigen::MatrixXd a_dense;
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(pts.size() * 16 + breaks.size() * 16);
+  if (dense) a_dense = Eigen::MatrixXd::Zero(n, n);
+  else triplets.reserve(pts.size() * 16 + breaks.size() * 16);
+  auto add = [&](int r, int c, double v) {
+    if (dense) a_dense(r, c) += v;
+    else triplets.emplace_back(r, c, v);
+  };
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
   double ders[4][4];
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const int sp = shape.span(t[i]);
     shape.basis(sp, shape.wrap(t[i]), ders, 0);
+    int index[4];
+    for (int a = 0; a < 4; ++a) index[a] = shape.controlIndex(sp - 3 + a);
     for (int a = 0; a < 4; ++a) {
-      const int ia = shape.controlIndex(sp - 3 + a);
-      rhs(ia, 0) += ders[0][a] * pts[i].x();
-      rhs(ia, 1) += ders[0][a] * pts[i].y();
-      for (int b = 0; b < 4; ++b) triplets.emplace_back(ia, shape.controlIndex(sp - 3 + b), ders[0][a] * ders[0][b]);
+      rhs(index[a], 0) += ders[0][a] * pts[i].x();
+      rhs(index[a], 1) += ders[0][a] * pts[i].y();
+      for (int b = 0; b < 4; ++b) add(index[a], index[b], ders[0][a] * ders[0][b]);
     }
   }
   // Jerk energy: C''' is constant on each span, so integral = sum over spans of width * |C'''|^2.
@@ -73,14 +83,11 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
     shape.basis(sp, mid, ders);
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
-        triplets.emplace_back(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b),
-                              scale * width * ders[3][a] * ders[3][b]);
+        add(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b), scale * width * ders[3][a] * ders[3][b]);
   }
   Eigen::MatrixXd x;
-  if (n <= kDenseLimit) {
-    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
-    for (const auto& e : triplets) dense(e.row(), e.col()) += e.value();
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(dense);
+  if (dense) {
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a_dense);
     if (ldlt.info() != Eigen::Success) return false;
     x = ldlt.solve(rhs);
   } else {
@@ -217,11 +224,13 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
   // Raise the fairness weight as far as the tolerance allows and the noise justifies:
   // the residuals may grow to the noise level (Morozov's discrepancy principle: rms
   // distance of 2D noise sigma is sigma sqrt(2)), never past the tolerance margin.
-  if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0) {
+  const double limit = options.fairness_margin * options.tolerance;
+  const double rms_limit = std::sqrt(2.0) * options.noise_sigma;
+  auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
+  // (The residuals only grow with w: if the fit is not acceptable now, no larger w is.)
+  if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0 &&
+      acceptable(current)) {
     double lo = std::log(weight), hi = std::log(options.max_fairness);
-    const double limit = options.fairness_margin * options.tolerance;
-    const double rms_limit = std::sqrt(2.0) * options.noise_sigma;
-    auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
     Attempt probe = current;
     if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && acceptable(probe)) {
       current = probe;
