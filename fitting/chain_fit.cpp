@@ -66,6 +66,13 @@ constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0
 // trading closure for fit.
 constexpr double kConstraintMerit = 1e8;
 constexpr double kNegligibleDecrease = 0.1;
+// Closing the constraints after the iterations: at most this many steps, until their
+// violation (normalized units) is below kRestored.
+constexpr int kRestoreSteps = 5;
+constexpr double kRestored = 1e-12;
+// A chain meets its constraints (joints, closure, a fixed end) below this violation
+// (normalized units); snapToJoints closes what is left exactly.
+constexpr double kAdmissible = 1e-7;
 
 inline double valueOf(double x) { return x; }
 inline double valueOf(const Jet& x) { return x.a; }
@@ -831,7 +838,8 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   layout.closed = options.closed;
   layout.fix_start = options.fix_start && !options.closed;
   layout.fix_end = options.fix_end && !options.closed;
-  layout.end_point = (initial.back().end() - origin) / scale;
+  layout.start_point = points.front();  // a fixed end is the first / last point (a corner)
+  layout.end_point = points.back();
   std::vector<double> x0, lower, upper, caps;
   auto add = [&](double value, double lo, double hi, double cap) {
     x0.push_back(value), lower.push_back(lo), upper.push_back(hi), caps.push_back(cap);
@@ -873,7 +881,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     layout.turning.push_back(add(std::log(std::abs(initial[i].turning())), -INFINITY, INFINITY, kMaxLogTurningStep));
     const double lo = options.min_alpha;
     const double hi = (zero0 || zero1) ? std::min(kInflectionAlphaCap, options.max_alpha) : options.max_alpha;
-    const double a = std::getenv("ARESET") ? (zero0 || zero1 ? -1.0 : atof(std::getenv("ARESET"))) : std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
+    const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
     layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
   }
   double turning = 0.0;  // summed: the segments' own theta0 may be wrapped
@@ -882,10 +890,6 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   layout.size = static_cast<int>(x0.size());
   layout.prior_alpha = options.alpha_prior;
   layout.prior_weight = options.alpha_spread > 0.0 ? options.noise / scale / options.alpha_spread : 0.0;
-  if (std::getenv("FIXENDK") && !options.closed) {
-    for (int j : {layout.kappa.front(), layout.kappa.back()}) if (j >= 0) lower[j] = upper[j] = x0[j];
-  }
-  if (std::getenv("FIXALPHA")) for (int j : layout.alpha) lower[j] = upper[j] = x0[j];
   layout.lower = Eigen::Map<Eigen::VectorXd>(lower.data(), layout.size);
   layout.upper = Eigen::Map<Eigen::VectorXd>(upper.data(), layout.size);
   const Eigen::VectorXd step_caps = Eigen::Map<Eigen::VectorXd>(caps.data(), layout.size);
@@ -916,6 +920,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   used.evaluate(model, used_feet, frames, r, c);
   const auto data = static_cast<Eigen::Index>(used_points.size());
   const double ssr_before = r.head(data).squaredNorm();
+  const bool admissible_before = c.size() == 0 || c.norm() <= kAdmissible;  // the start meets the constraints
 
   // A step that lowers the sum of squared distances by less than a fraction of one
   // point's noise variance moves the chain by less than the noise can tell.
@@ -925,6 +930,20 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
                                       x, used_feet, model, iterations);
   used.evaluate(model, used_feet, frames, r, c);
+  // The iterations keep the constraints only as far as their merit asks; least-norm
+  // moves back onto them (Newton on c = 0) close the joints to rounding.
+  for (int k = 0; k < kRestoreSteps && c.size() > 0 && c.norm() > kRestored; ++k) {
+    Jacobian jac;
+    Eigen::MatrixXd cjac;
+    used.jacobian(model, used_feet, frames, jac, cjac);
+    const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-c);
+    const Eigen::VectorXd moved = (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+    ChainModel trial;
+    if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
+    x = moved;
+    std::swap(model, trial);
+    used.evaluate(model, used_feet, frames, r, c);
+  }
   const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
   // Every point's foot: from its nearest picked neighbour's, projected afresh.
   for (std::size_t j = 0; j + 1 < pick.size(); ++j)
@@ -956,7 +975,9 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     return result;
   }
   const double ssr_after = r.head(data).squaredNorm();
-  result.improved = ssr_after < ssr_before;
+  // Better: closer to the points, or meeting constraints the start did not meet.
+  const bool admissible = c.size() == 0 || c.norm() <= kAdmissible;
+  result.improved = admissible && (ssr_after < ssr_before || !admissible_before);
   if (!result.improved) {
     result.report = {SolveStatus::kConverged, iterations, std::sqrt(ssr_before / used_points.size()) * scale,
                      "kept: the fit did not bring the chain closer"};

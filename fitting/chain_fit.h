@@ -56,8 +56,8 @@ struct ChainFoot {
 struct ChainFitOptions {
   double min_alpha = -3.0, max_alpha = 3.0;
   bool closed = false;      // the chain is closed: its end returns to its start, G2
-  bool fix_start = false;   // the start point stays (a corner)
-  bool fix_end = false;     // the end point stays (a corner)
+  bool fix_start = false;   // the chain starts at the first point (a corner) and stays there
+  bool fix_end = false;     // the chain ends at the last point (a corner) and stays there
   int max_iterations = 30;  // Levenberg-Marquardt steps
   /// Stop when a step lowers the cost by less than this fraction.
   double relative_decrease = 1e-7;

@@ -343,12 +343,33 @@ SplitPoint halvingPoint(const CubicBSpline& spline, double t0, double t1) {
   return {spline.wrap(mid), SplitKind::kTurning, spline.curvature(spline.wrap(mid))};
 }
 
+// Each point's foot on pieces spanning the spline parameters [t0, t1] (a closed spline's
+// last piece runs through the seam): the piece its parameter falls in, and where.
+std::vector<ChainFoot> feetOnSpans(const std::vector<PieceReport>& spans, const std::vector<double>& parameters,
+                                   bool periodic, double period) {
+  std::vector<ChainFoot> feet(parameters.size());
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    for (std::size_t i = 0; i < spans.size(); ++i) {
+      const double t = (parameters[k] < spans[i].t0 && periodic) ? parameters[k] + period : parameters[k];
+      if (t >= spans[i].t0 && t <= spans[i].t1) {
+        feet[k] = {i, std::clamp((t - spans[i].t0) / (spans[i].t1 - spans[i].t0), 0.0, 1.0)};
+        break;
+      }
+    }
+  }
+  return feet;
+}
+
 struct PartFit {
   std::vector<LaSegment> segments;
   std::vector<PieceReport> reports;
   std::optional<CubicBSpline> spline;
   std::vector<SplitPoint> splits;
-  std::vector<ChainFoot> feet;  // of the part's points on `segments` (from the spline parameters)
+  std::vector<PieceReport> spans;  // every piece of the final segmentation (segments may differ after a failed G2)
+  std::vector<ChainFoot> feet;     // of the part's points on `spans` (from their spline parameters)
+  std::vector<double> parameters;  // the points' spline parameters
+  std::vector<std::string> warnings;
+  double max_dev = NAN;            // largest distance of the part's points from `segments`, once known
   SolveReport smoothing, g2;
 };
 
@@ -358,8 +379,9 @@ namespace {
 
 // Stages 2-6 for one corner-free part.
 PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, const FitOptions& options,
-                StageTimings& timings, std::vector<std::string>& warnings) {
+                StageTimings& timings) {
   PartFit out;
+  std::vector<std::string>& warnings = out.warnings;
   out.smoothing = {SolveStatus::kConverged, 0, 0.0, "straight"};
   out.g2 = {SolveStatus::kConverged, 0, 0.0, "straight"};
   if (!part.closed && (part.points.size() < 4 || withinChord(part.points, tol))) {
@@ -379,6 +401,8 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
   // the tolerance for clean data.
   so.tolerance = options.polish ? tol : std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
   so.noise_sigma = noise.sigma;
+
+
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   if (std::getenv("LADBG")) std::fprintf(stderr, "smoothing: tol %g sigma %g fairness %g max %g rms %g rounds %d\n", so.tolerance, so.noise_sigma, smooth.fairness, smooth.max_error, smooth.rms_error, smooth.rounds);
   timings.smoothing_ms += msSince(t0);
@@ -569,7 +593,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           halve[i] = true;
         }
       }
-    } else if (!options.polish) {
+    } else {
       const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
       const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
       double excess = 0.0;  // largest deviation beyond what is allowed
@@ -586,6 +610,10 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
         any = best->excess > 0.0;
       }
     }
+    // With stage 7 to follow, no piece is cut here: where stages 5-6 find no G2 chain the
+    // fit starts from the spline (chainFromSpline), and its model selection adds the
+    // segments the points need (cutting here leaves slivers where the spline wiggles).
+    if (options.polish) any = false;
     if (any && pass < kMaxRefinePasses) {
       if (seg.closed && drop[n]) drop[0] = true;  // joint n of a closed chain is joint 0
       std::vector<SplitPoint> splits;
@@ -599,6 +627,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
     }
     if (any && !res.segments.empty()) warnings.push_back("some segments stay further than the tolerance from the points");
     out.g2 = res.report;
+    std::vector<PieceReport> spans = reports;  // before the fallback below drops pieces
     if (res.segments.empty()) {
       // Last resort: the pieces that have an LA segment keep it, the others become
       // straight lines between their joints. G2 (and G1 at the lines) is lost there and
@@ -627,17 +656,9 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
     out.segments = std::move(res.segments);
     out.reports = std::move(reports);
     out.splits = seg.splits;
-    if (out.segments.size() == out.reports.size()) {
-      // Each point's foot from its spline parameter: the piece it falls in, and where.
-      const std::vector<std::vector<std::size_t>> held = pointsOfPieces(out.reports, smooth, period);
-      out.feet.assign(part.points.size(), ChainFoot{});
-      for (std::size_t i = 0; i < held.size(); ++i)
-        for (std::size_t k : held[i]) {
-          double t = smooth.parameters[k];
-          if (t < out.reports[i].t0) t += period;
-          out.feet[k] = {i, std::clamp((t - out.reports[i].t0) / (out.reports[i].t1 - out.reports[i].t0), 0.0, 1.0)};
-        }
-    }
+    out.feet = feetOnSpans(spans, smooth.parameters, smooth.spline.isPeriodic(), period);
+    out.parameters = smooth.parameters;
+    out.spans = std::move(spans);
     return out;
   }
 }
@@ -658,7 +679,108 @@ PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vec
   return out;
 }
 
-void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag, const FitOptions& options) {
+// The chain stage 7 starts from where stages 5-6 found none (a piece whose tangents form
+// no control triangle, a joint no tangent angle makes G2): read off the spline in
+// intrinsic form. A piece turning against both its neighbours (between two inflections)
+// is cut at its largest curvature first (`spans` is updated). Each piece has the
+// spline's length; its end curvatures are the spline's at the joints (0 where the
+// turning direction changes, an inflection; a small value of the piece's sign where the
+// spline's has the other), scaled so that the piece turns as the spline does (shared at
+// a joint: the geometric mean of the two pieces' scales); alpha is the fit's prior (-1
+// next to an inflection). G2 by construction; its positions drift from the points by
+// the spline's curvature errors, which the fit removes.
+std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed) {
+  constexpr int kSteps = 16;           // per piece, for its turning and length
+  constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
+  auto measure = [&](double t0, double t1, double& turning, double& length) {
+    double prev = splineTangentAngle(spline, spline.wrap(t0));
+    Vec2 p = spline.point(spline.wrap(t0));
+    turning = length = 0.0;
+    for (int k = 1; k <= kSteps; ++k) {
+      const double t = spline.wrap(t0 + (t1 - t0) * k / kSteps);
+      const double a = splineTangentAngle(spline, t);
+      turning += wrapAngle(a - prev);
+      prev = a;
+      const Vec2 q = spline.point(t);
+      length += (q - p).norm();
+      p = q;
+    }
+  };
+  auto sign = [](double v) { return v < 0.0 ? -1.0 : 1.0; };
+  std::vector<double> turning, length;
+  for (bool again = true; again;) {
+    again = false;
+    const std::size_t n = spans.size();
+    turning.assign(n, 0.0);
+    length.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
+    for (std::size_t i = 0; i < n && n >= 3; ++i) {
+      const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
+      if (!has_before || !has_after) continue;
+      const double s = sign(turning[i]);
+      if (sign(turning[(i + n - 1) % n]) == s || sign(turning[(i + 1) % n]) == s) continue;
+      double best_t = 0.5 * (spans[i].t0 + spans[i].t1), best = 0.0;
+      for (int k = 1; k < kSteps; ++k) {
+        const double t = spans[i].t0 + (spans[i].t1 - spans[i].t0) * k / kSteps;
+        const double kappa = std::abs(spline.curvature(spline.wrap(t)));
+        if (kappa > best) best = kappa, best_t = t;
+      }
+      PieceReport second = spans[i];
+      spans[i].t1 = second.t0 = best_t;
+      spans[i].end_kind = second.start_kind = SplitKind::kExtremum;
+      spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i) + 1, second);
+      again = true;
+      break;
+    }
+  }
+  const std::size_t n = spans.size(), joints = closed ? n : n + 1;
+  std::vector<double> kappa(joints, 0.0);
+  for (std::size_t j = 0; j < joints; ++j) {
+    const bool has_before = closed || j > 0, has_after = closed || j < n;
+    const std::size_t before = (j + n - 1) % n, after = j % n;
+    if (has_before && has_after && sign(turning[before]) != sign(turning[after])) continue;  // inflection: 0
+    const std::size_t piece = has_after ? after : before;
+    const double s = sign(turning[piece]);
+    const double k = spline.curvature(spline.wrap(has_after ? spans[after].t0 : spans[before].t1));
+    const double mean = std::abs(turning[piece]) / std::max(length[piece], 1e-300);
+    kappa[j] = sign(k) == s && std::abs(k) > kSmallKappa * mean ? k : s * kSmallKappa * mean;
+  }
+  // Scale each piece's curvature to its turning; a joint takes its pieces' mean scale.
+  auto alphaOf = [&](double k0, double k1) { return (k0 == 0.0 || k1 == 0.0) ? -1.0 : kPolishStartAlpha; };
+  std::vector<double> scale(n, 1.0);
+  try {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double k0 = kappa[i], k1 = kappa[(i + 1) % joints];
+      if (k0 == 0.0 && k1 == 0.0) return {};
+      const double t = LaSegment(alphaOf(k0, k1), length[i], Vec2::Zero(), 0.0, k0, k1).turning();
+      scale[i] = std::clamp(turning[i] / t, 0.1, 10.0);
+    }
+    for (std::size_t j = 0; j < joints; ++j) {
+      const bool has_before = closed || j > 0, has_after = closed || j < n;
+      const double a = has_before ? scale[(j + n - 1) % n] : scale[j % n], b = has_after ? scale[j % n] : a;
+      kappa[j] *= std::sqrt(a * b);
+    }
+    std::vector<LaSegment> chain;
+    Vec2 start = spline.point(spline.wrap(spans.front().t0));
+    double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double k0 = kappa[i], k1 = kappa[(i + 1) % joints];
+      chain.emplace_back(alphaOf(k0, k1), length[i], start, theta, k0, k1);
+      start = chain.back().end();
+      theta = chain.back().theta(chain.back().length());
+    }
+    return chain;
+  } catch (const std::invalid_argument&) {
+    return {};
+  }
+}
+
+// Stage 7 on one part: fits its chain to the points and selects its segments
+// (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
+// the spline. The result replaces the part's chain where it is within the tolerance or
+// closer to the points than that chain; fit.max_dev is then known.
+void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
+                const FitOptions& options) {
   SelectionOptions so;
   so.tolerance = tol;
   ChainFitOptions& co = so.fit;
@@ -669,12 +791,21 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   co.fix_end = ends_at_corner;
   co.max_points = 200; co.max_iterations = 10;
   co.noise = noise;
-  for (const LaSegment& s : fit.segments)
-    if (!std::isfinite(s.alpha()) && s.kappaStart() == 0.0) return;  // a straight piece
-  const SelectionResult selected = selectChain(fit.segments, part.points, fit.feet, so);
+  if (!fit.spline) return;  // a straight part
+  std::vector<LaSegment> start = fit.segments;
+  bool straight = false;
+  for (const LaSegment& s : start) straight |= !std::isfinite(s.alpha()) && s.kappaStart() == 0.0;
+  std::vector<ChainFoot> feet = fit.feet;
+  if (!fit.g2.usable() || straight || start.size() != fit.spans.size()) {
+    std::vector<PieceReport> spans = fit.spans;
+    start = chainFromSpline(*fit.spline, spans, part.closed);
+    feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
+  }
+  if (start.empty()) return;
+  const SelectionResult selected = selectChain(start, part.points, feet, so);
   const ChainFitResult& polished = selected.fit;
   if (std::getenv("LADBG")) std::fprintf(stderr, "polish: %s it %d improved %d max %g tol %g splits %d collapses %d merges %d\n", polished.report.message.c_str(), polished.report.iterations, polished.improved, polished.max_distance, tol, selected.splits, selected.collapses, selected.merges);
-  if (!polished.improved && selected.splits + selected.collapses + selected.merges == 0) return;
+  if (polished.report.status == SolveStatus::kBadInput) return;
   std::vector<LaSegment> segments = polished.segments;
   if (co.closed || co.fix_end) {
     G2Options g2;
@@ -682,11 +813,18 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     g2.threshold = options.g2_threshold;
     g2.diagonal = diag;
     segments = snapToJoints(segments, co.closed, part.points.back(), g2);
+    if (std::getenv("LADBG") && !segments.empty()) { std::fprintf(stderr, "snapped: max %g (fit said %g)\n", deviationOf(segments, part.points, diag).max, polished.max_distance); for (auto& q : polished.segments) std::fprintf(stderr, "  fit a %.3f L %.3f k %.5f %.5f start %.3f %.3f th %.4f end %.4f %.4f thend %.4f\n", q.alpha(), q.length(), q.kappaStart(), q.kappaEnd(), q.start().x(), q.start().y(), q.theta0(), q.end().x(), q.end().y(), q.theta(q.length())); for (auto& q : segments) std::fprintf(stderr, "  snap a %.3f L %.3f k %.5f %.5f start %.3f %.3f th %.4f end %.4f %.4f thend %.4f\n", q.alpha(), q.length(), q.kappaStart(), q.kappaEnd(), q.start().x(), q.start().y(), q.theta0(), q.end().x(), q.end().y(), q.theta(q.length())); std::fprintf(stderr, "  corner %.4f %.4f\n", part.points.back().x(), part.points.back().y()); }
     if (segments.empty()) return;
   }
-  // Kept where within the tolerance, or closer to the points than the chain it started from.
-  if (polished.max_distance > tol && polished.max_distance >= deviationOf(fit.segments, part.points, diag).max) return;
+  if (polished.max_distance > tol) {
+    fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
+    if (polished.max_distance >= fit.max_dev) return;
+  }
+  fit.max_dev = polished.max_distance;
+  fit.warnings.clear();
+  if (polished.max_distance > tol) fit.warnings.push_back("some segments stay further than the tolerance from the points");
   fit.segments = segments;
+  fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
   fit.reports.resize(segments.size(), fit.reports.back());
   for (std::size_t i = 0; i < fit.segments.size(); ++i) {
     fit.reports[i].alpha = fit.segments[i].alpha();
@@ -716,15 +854,30 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings, r.warnings);
-    // An open stroke's last part (its end is free; a part that ends at a corner must keep
-    // it) is polished, and keeps the polish where it stays within the tolerance.
-    if (options.polish && fit.g2.usable()) {
-      const auto tp = Clock::now();
+    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings);
+    if (options.polish) {
       const bool ends_at_corner = r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size();
-      polishPart(fit, parts[k], ends_at_corner, r.tolerance, noise.sigma, diag, options);
-      r.timings.polish_ms += msSince(tp);
+      auto polish = [&](PartFit& f) {
+        const auto tp = Clock::now();
+        polishPart(f, parts[k], ends_at_corner, r.tolerance, noise.sigma, diag, options);
+        r.timings.polish_ms += msSince(tp);
+      };
+      polish(fit);
+      // Where that leaves a gap or a miss, stages 2-6 as the paper has them (cutting pieces
+      // that stray or have no LA segment) give a chain close to the points, polished in
+      // turn; the better of the two stays.
+      if (!fit.g2.usable() || !(fit.max_dev <= r.tolerance)) {
+        FitOptions plain = options;
+        plain.polish = false;
+        PartFit other = fitPart(parts[k], r.tolerance, noise, diag, plain, r.timings);
+        polish(other);
+        if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, parts[k].points, diag).max;
+        if (std::isnan(other.max_dev)) other.max_dev = deviationOf(other.segments, parts[k].points, diag).max;
+        const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
+        if (better) fit = std::move(other);
+      }
     }
+    r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);

@@ -23,6 +23,12 @@ constexpr int kMinPointsToSplitShared = 2;
 // Up to this many control points the normal equations are solved dense (faster than
 // the sparse factorization's set-up); above, sparse LDLT.
 constexpr int kDenseLimit = 48;
+// Solves at fixed knots after the last knot round, while the rms residual still falls by
+// more than kSettled (relative): the foot points and the spline settle together.
+constexpr int kSettleSolves = 3;
+// Newton steps for the foot of every point after a fit on a subsample.
+constexpr int kAllPointsFootSteps = 3;
+constexpr double kSettled = 0.01;
 
 // Chord-length parameters in [0, 1]; for a closed stroke the closing chord counts too
 // and 1 is the start again.
@@ -161,9 +167,9 @@ bool attempt(const std::vector<Vec2>& pts, const std::vector<double>& breaks, bo
 
 }  // namespace
 
-SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
-  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
-  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
+namespace {
+
+SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
   const int min_spans = closed ? 4 : 1;
   std::vector<double> breaks;
   const int spans0 = std::max(min_spans, options.initial_spans);
@@ -220,6 +226,16 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
     breaks = std::move(next);
   }
   result.rounds = round + 1;
+  // The last solve used the parameters from before its own foot-point correction: solve
+  // again until the residuals settle (the knots stay).
+  for (int k = 0; k < kSettleSolves && current.max_error <= options.tolerance; ++k) {
+    Attempt again = current;
+    if (!attempt(pts, breaks, closed, weight, options.foot_point_steps, again)) break;
+    const double before = rmsOf(current.dist), after = rmsOf(again.dist);
+    if (again.max_error > options.tolerance) break;
+    current = std::move(again);
+    if (before - after < kSettled * before) break;
+  }
 
   // Raise the fairness weight as far as the tolerance allows and the noise justifies:
   // the residuals may grow to the noise level (Morozov's discrepancy principle: rms
@@ -227,9 +243,7 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
   const double limit = options.fairness_margin * options.tolerance;
   const double rms_limit = std::sqrt(2.0) * options.noise_sigma;
   auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
-  // (The residuals only grow with w: if the fit is not acceptable now, no larger w is.)
-  if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0 &&
-      acceptable(current)) {
+  if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0) {
     double lo = std::log(weight), hi = std::log(options.max_fairness);
     Attempt probe = current;
     if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && acceptable(probe)) {
@@ -260,6 +274,50 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
                    ok ? "within tolerance with " + std::to_string(breaks.size() - 1) + " spans"
                       : "tolerance not reached with " + std::to_string(breaks.size() - 1) + " spans (max error " +
                             std::to_string(current.max_error) + ")"};
+  return result;
+}
+
+}  // namespace
+
+SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
+  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
+  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
+  const std::size_t m = pts.size(), used = options.max_points;
+  if (used < 4 || m <= used) return smoothPoints(pts, closed, options);
+  // An even subsample (an open stroke's ends kept), then every point's parameter from its
+  // picked neighbours' (in proportion to the chord length between them) and corrected to
+  // its foot on the spline.
+  std::vector<std::size_t> pick;
+  for (std::size_t k = 0; k < used; ++k) pick.push_back(closed ? k * m / used : k * (m - 1) / (used - 1));
+  std::vector<Vec2> sub;
+  for (std::size_t k : pick) sub.push_back(pts[k]);
+  SmoothingResult result = smoothPoints(sub, closed, options);
+  const double period = result.spline.tMax() - result.spline.tMin();
+  std::vector<double> t(m);
+  const std::size_t spans = closed ? pick.size() : pick.size() - 1;
+  for (std::size_t j = 0; j < spans; ++j) {
+    const std::size_t a = pick[j], b = j + 1 < pick.size() ? pick[j + 1] : pick[0] + m;
+    const double ta = result.parameters[j];
+    double tb = j + 1 < pick.size() ? result.parameters[j + 1] : result.parameters[0];
+    if (closed && tb < ta) tb += period;
+    double total = 0.0;
+    for (std::size_t k = a; k < b; ++k) total += (pts[(k + 1) % m] - pts[k % m]).norm();
+    double run = 0.0;
+    for (std::size_t k = a; k < b; ++k) {
+      t[k % m] = result.spline.wrap(ta + (tb - ta) * (total > 0.0 ? run / total : 0.0));
+      run += (pts[(k + 1) % m] - pts[k % m]).norm();
+    }
+  }
+  if (!closed) t[m - 1] = result.parameters.back();
+  std::vector<double> dist;
+  correctParameters(result.spline, pts, kAllPointsFootSteps, t, dist);
+  result.parameters = std::move(t);
+  result.max_error = *std::max_element(dist.begin(), dist.end());
+  result.rms_error = rmsOf(dist);
+  if (result.max_error > options.tolerance && result.report.usable())
+    result.report = {SolveStatus::kIterationLimit, result.rounds, result.max_error,
+                     "within tolerance on " + std::to_string(used) + " of " + std::to_string(m) +
+                         " points, not on all (max error " + std::to_string(result.max_error) + ")"};
   return result;
 }
 
