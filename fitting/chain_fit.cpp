@@ -4,22 +4,16 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <chrono>
 #include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/quadrature.h"
 
 namespace la {
 namespace {
-// TEMP profiling
-struct Prof { double t[8] = {0}; long n[8] = {0}; ~Prof() { if (std::getenv("PROF")) for (int i = 0; i < 8; ++i) if (n[i]) std::fprintf(stderr, "prof %d: %.2f ms over %ld calls\n", i, t[i], n[i]); } } prof;
-struct ProfScope { int k; std::chrono::steady_clock::time_point s = std::chrono::steady_clock::now(); ~ProfScope() { prof.t[k] += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - s).count(); ++prof.n[k]; } };
 
 // Forward-mode derivatives of a segment's local curve by its own four unknowns.
 using Jet = ceres::Jet<double, 4>;
@@ -485,7 +479,6 @@ struct ChainModel : ChainGeometry {
 
 // Builds the model at x. False if a segment's unknowns leave the LA family or overflow.
 bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
-  ProfScope ps{derivatives ? 1 : 0};
   const std::size_t n = layout.segments;
   m.closed = layout.closed;
   m.laws.resize(n);
@@ -561,7 +554,6 @@ class ChainProblem {
   // fills the residuals; the constraint values too.
   void evaluate(const ChainModel& m, std::vector<ChainFoot>& feet, std::vector<FootFrame>& frames, Eigen::VectorXd& r,
                 Eigen::VectorXd& c, bool project = true) const {
-    ProfScope ps{project ? 2 : 3};
     const std::size_t n_points = points_.size();
     frames.resize(n_points);
     if (!layout_.closed) {
@@ -596,7 +588,6 @@ class ChainProblem {
   // The Jacobians of the residuals (feet held) and of the constraints.
   void jacobian(const ChainModel& m, const std::vector<ChainFoot>& feet, const std::vector<FootFrame>& frames,
                 Jacobian& j, Eigen::MatrixXd& cj) const {
-    ProfScope ps{4};
     const std::size_t n_points = points_.size();
     j.setZero(static_cast<Eigen::Index>(rows()), layout_.size);
     auto add = [&](Eigen::Index row, std::size_t k, const Vec2& direction) {
@@ -695,7 +686,6 @@ double capFactor(const Eigen::VectorXd& step, const Eigen::VectorXd& caps) {
 SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
                      int max_iterations, double relative_decrease, double least_decrease, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
                      ChainModel& model, int& iterations) {
-  ProfScope ps{6};
   auto merit = [](const Eigen::VectorXd& res, const Eigen::VectorXd& con) {
     return res.squaredNorm() + kConstraintMerit * con.squaredNorm();
   };
@@ -726,18 +716,14 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         // bends the step along the curved valleys a chain's rotations make. Used only
         // where it is small against the step (their criterion).
         constexpr double kProbe = 0.1, kMaxAcceleration = 0.75;
-        if (std::getenv("NOGEO")) goto skip_geo;
         if (!buildModel(layout, x + kProbe * step, false, trial_model)) continue;
         held = feet;
         problem.evaluate(trial_model, held, trial_frames, trial_r, trial_c, false);
         const Eigen::VectorXd r2 = (2.0 / kProbe) * ((trial_r - r) / kProbe - jac * step);
         const Eigen::VectorXd c2 = (2.0 / kProbe) * ((trial_c - c) / kProbe - cjac * step);
         const Eigen::VectorXd accel = system.solve(jac.transpose() * r2, c2);
-        const bool use = 2.0 * accel.norm() <= kMaxAcceleration * step.norm();
-        if (std::getenv("LADBG_FIT2")) std::fprintf(stderr, "    lambda %.1e |step| %.3e |accel| %.3e used %d pred %.3e\n", lambda, step.norm(), accel.norm(), use, r.squaredNorm() - (r + jac * step).squaredNorm());
-        if (use) step += 0.5 * accel;
+        if (2.0 * accel.norm() <= kMaxAcceleration * step.norm()) step += 0.5 * accel;
       }
-      skip_geo:
       Eigen::VectorXd trial = (x + step).cwiseMax(layout.lower).cwiseMin(layout.upper);
       if (!trial.allFinite() || !buildModel(layout, trial, false, trial_model)) continue;
       trial_feet = feet;
@@ -768,13 +754,6 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
       accepted = true;
       break;
     }
-    if (std::getenv("LADBG_FIT"))
-    {
-      std::fprintf(stderr, "it %d phi %.6e |c| %.2e lambda %.1e accepted %d x:", iterations, phi, c.norm(), lambda,
-                   accepted);
-      for (int i = 0; i < x.size(); ++i) std::fprintf(stderr, " %.4f", x[i]);
-      std::fprintf(stderr, "\n");
-    }
     if (accepted && !buildModel(layout, x, true, model)) return SolveStatus::kIterationLimit;  // x was modelled as a trial
     // No step lowers the merit: a minimum to the steps' resolution.
     if (!accepted || converged) return SolveStatus::kConverged;
@@ -789,7 +768,6 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
 Eigen::VectorXd alphaStandardErrors(const Layout& layout, const ChainProblem& problem, const ChainModel& model,
                                     const std::vector<ChainFoot>& feet, const std::vector<FootFrame>& frames,
                                     const Eigen::VectorXd& r) {
-  ProfScope ps{7};
   Jacobian jac;
   Eigen::MatrixXd cjac;
   problem.jacobian(model, feet, frames, jac, cjac);
@@ -814,7 +792,6 @@ bool sameSign(double a, double b) { return (a < 0.0) == (b < 0.0); }
 
 ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& all_points,
                         const std::vector<ChainFoot>& initial_feet, const ChainFitOptions& options) {
-  ProfScope ps{5};
   ChainFitResult result;
   result.segments = initial;
   const std::size_t n = initial.size();

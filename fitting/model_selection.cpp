@@ -4,8 +4,6 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
-#include <cstdio>
-#include <cstdlib>
 
 namespace la {
 namespace {
@@ -164,7 +162,6 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
     if (!rebuilt || rebuilt->empty()) return std::nullopt;
     ChainFitResult r = fitChain(*rebuilt, points, e->feet, options.fit);
-    if (std::getenv("LADBG")) std::fprintf(stderr, "  trial %zu segments: %s it %d max %g ssr %g (now %g)\n", rebuilt->size(), r.report.message.c_str(), r.report.iterations, r.max_distance, r.ssr, out.fit.ssr);
     if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
     return r;
   };

@@ -32,7 +32,7 @@ struct SelectionOptions {
   /// A segment turning less than this (radians) is a collapse candidate; a joint whose
   /// curvature changes by less than this fraction on either side, a merge candidate.
   double sliver_turning = 0.08;
-  double weak_extremum = 0.3;
+  double weak_extremum = 0.5;
   /// Merged segments turn at most this (radians), so every control triangle stays well
   /// shaped (the app's editing works on them).
   double max_turning = 2.0;

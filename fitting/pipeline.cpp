@@ -28,6 +28,11 @@ constexpr double kLcgTrim = 0.1;
 constexpr double kDefaultAlpha = -1.0;
 constexpr double kWidestAlpha = 0.5;
 constexpr double kPolishStartAlpha = 0.5;
+// Stage 7's fit: points it iterates on (an even subsample) and Levenberg-Marquardt steps
+// per fit. Measured on the ground-truth chains (tests/pipeline_test.cpp) and the shared
+// data: fewer points lose alpha accuracy, more steps buy little but time.
+constexpr std::size_t kFitPoints = 300;
+constexpr int kFitIterations = 8;
 constexpr int kAlphaBisections = 12;
 constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
@@ -404,7 +409,6 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
 
 
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
-  if (std::getenv("LADBG")) std::fprintf(stderr, "smoothing: tol %g sigma %g fairness %g max %g rms %g rounds %d\n", so.tolerance, so.noise_sigma, smooth.fairness, smooth.max_error, smooth.rms_error, smooth.rounds);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
   if (!smooth.report.usable()) warnings.push_back("smoothing: " + smooth.report.message);
@@ -558,14 +562,6 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
       res = makeG2(chain, g2);
     }
     timings.g2_ms += msSince(t0);
-    if (std::getenv("LADBG")) {
-      std::fprintf(stderr, "pass %d n %zu g2 %s [%s] max_gap %g\n", pass, n, res.report.usable() ? "ok" : "FAIL", res.report.message.c_str(), res.max_gap);
-      for (std::size_t i = 0; i < n; ++i) {
-        const SegmentSolve sv = solvePiece(chain, i);
-        std::fprintf(stderr, "  piece %zu t[%.4f %.4f] %s/%s kind %s alpha %.3f pts %zu turn %.4f solve %s\n", i, reports[i].t0, reports[i].t1, toString(reports[i].start_kind), toString(reports[i].end_kind), toString(chain.pieces[i].kind), chain.pieces[i].alpha, members[i].size(), chain.angles[i + 1] - chain.angles[i], sv.report.usable() ? "ok" : sv.report.message.c_str());
-      }
-      for (std::size_t k = 0; k < res.gaps.size(); ++k) if (res.gaps[k] > 1e-6) std::fprintf(stderr, "  gap at eq %zu: %g\n", k, res.gaps[k]);
-    }
     // Pieces to halve: those with no LA segment (tangents not forming a convex
     // triangle, or no alpha reaching it), else those whose segment strays from the
     // points further than the tolerance (or the spline's own error there). Joints to
@@ -593,7 +589,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           halve[i] = true;
         }
       }
-    } else {
+    } else if (!options.polish) {  // (stage 7 measures and corrects the deviations itself)
       const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
       const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
       double excess = 0.0;  // largest deviation beyond what is allowed
@@ -789,7 +785,8 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   co.closed = part.closed;
   co.fix_start = part.starts_at_corner;
   co.fix_end = ends_at_corner;
-  co.max_points = 200; co.max_iterations = 10;
+  co.max_points = kFitPoints;
+  co.max_iterations = kFitIterations;
   co.noise = noise;
   if (!fit.spline) return;  // a straight part
   std::vector<LaSegment> start = fit.segments;
@@ -804,7 +801,6 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   if (start.empty()) return;
   const SelectionResult selected = selectChain(start, part.points, feet, so);
   const ChainFitResult& polished = selected.fit;
-  if (std::getenv("LADBG")) std::fprintf(stderr, "polish: %s it %d improved %d max %g tol %g splits %d collapses %d merges %d\n", polished.report.message.c_str(), polished.report.iterations, polished.improved, polished.max_distance, tol, selected.splits, selected.collapses, selected.merges);
   if (polished.report.status == SolveStatus::kBadInput) return;
   std::vector<LaSegment> segments = polished.segments;
   if (co.closed || co.fix_end) {
@@ -813,7 +809,6 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     g2.threshold = options.g2_threshold;
     g2.diagonal = diag;
     segments = snapToJoints(segments, co.closed, part.points.back(), g2);
-    if (std::getenv("LADBG") && !segments.empty()) { std::fprintf(stderr, "snapped: max %g (fit said %g)\n", deviationOf(segments, part.points, diag).max, polished.max_distance); for (auto& q : polished.segments) std::fprintf(stderr, "  fit a %.3f L %.3f k %.5f %.5f start %.3f %.3f th %.4f end %.4f %.4f thend %.4f\n", q.alpha(), q.length(), q.kappaStart(), q.kappaEnd(), q.start().x(), q.start().y(), q.theta0(), q.end().x(), q.end().y(), q.theta(q.length())); for (auto& q : segments) std::fprintf(stderr, "  snap a %.3f L %.3f k %.5f %.5f start %.3f %.3f th %.4f end %.4f %.4f thend %.4f\n", q.alpha(), q.length(), q.kappaStart(), q.kappaEnd(), q.start().x(), q.start().y(), q.theta0(), q.end().x(), q.end().y(), q.theta(q.length())); std::fprintf(stderr, "  corner %.4f %.4f\n", part.points.back().x(), part.points.back().y()); }
     if (segments.empty()) return;
   }
   if (polished.max_distance > tol) {
@@ -855,7 +850,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
     PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings);
-    if (options.polish) {
+    if (options.polish && options.g2 != G2Method::kOff) {  // (stage 7 makes the chain G2)
       const bool ends_at_corner = r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size();
       auto polish = [&](PartFit& f) {
         const auto tp = Clock::now();

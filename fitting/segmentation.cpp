@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include <Eigen/Dense>
 
@@ -168,9 +166,7 @@ Segmentation segmentSpline(const CubicBSpline& spline, double t_begin, double t_
   const double end0 = spline.curvature(t_begin), end1 = spline.curvature(t_end);
   kappa_max = std::max({kappa_max, std::abs(end0), std::abs(end1)});
 
-  if (std::getenv("LADBG_SEG")) { std::fprintf(stderr, "extrema before (kmax %g thr %g):", kappa_max, options.significance * kappa_max); for (auto& e : extrema) std::fprintf(stderr, " %.4f:%.5f", e.t, e.kappa); std::fprintf(stderr, "\n zeros:"); for (double z : zeros) std::fprintf(stderr, " %.4f", z); std::fprintf(stderr, "\n"); }
   simplify(extrema, out.closed, end0, end1, options.significance * kappa_max, options.max_extrema);
-  if (std::getenv("LADBG_SEG")) { std::fprintf(stderr, "extrema after:"); for (auto& e : extrema) std::fprintf(stderr, " %.4f:%.5f", e.t, e.kappa); std::fprintf(stderr, "\n"); }
   relocateExtrema(spline, extrema, out.closed, t_begin, t_end);
 
   // Boundaries of monotone stretches, then one inflection between two of opposite sign.

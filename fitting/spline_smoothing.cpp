@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -50,6 +51,47 @@ int controlCount(const std::vector<double>& breaks, bool closed) {
   return closed ? spans : spans + 3;
 }
 
+// The four nonzero basis functions of every span as cubics in (t - knot_i), and a span
+// lookup that walks from the previous point's span: points come in order along the
+// stroke, so evaluating the basis at each costs a few multiplications instead of de
+// Boor's recursion and a binary search (the hot loop of every solve).
+class BasisTable {
+ public:
+  explicit BasisTable(const CubicBSpline& shape) : shape_(shape) {
+    const auto& knots = shape.knots();
+    const int first = CubicBSpline::kDegree, last = static_cast<int>(shape.control().size()) - 1;
+    coefficients_.resize(last + 1);
+    double ders[4][4];
+    for (int i = first; i <= last; ++i) {
+      if (!(knots[i + 1] > knots[i])) continue;
+      shape.basis(i, knots[i], ders, 3);
+      for (int a = 0; a < 4; ++a)
+        coefficients_[i][a] = {ders[0][a], ders[1][a], ders[2][a] / 2.0, ders[3][a] / 6.0};
+    }
+  }
+  // Span of t (wrapped) starting from `hint`, and the four basis values there.
+  int evaluate(double t, int hint, double value[4]) const {
+    t = shape_.wrap(t);
+    const auto& knots = shape_.knots();
+    const int first = CubicBSpline::kDegree, last = static_cast<int>(coefficients_.size()) - 1;
+    int i = std::clamp(hint, first, last);
+    if (!(knots[i] <= t && (t < knots[i + 1] || i == last))) {
+      while (i < last && t >= knots[i + 1]) ++i;
+      while (i > first && t < knots[i]) --i;
+    }
+    const double u = t - knots[i];
+    for (int a = 0; a < 4; ++a) {
+      const auto& c = coefficients_[i][a];
+      value[a] = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
+    }
+    return i;
+  }
+
+ private:
+  const CubicBSpline& shape_;
+  std::vector<std::array<std::array<double, 4>, 4>> coefficients_;
+};
+
 // Solves the penalized least squares for fixed breaks and parameters.
 bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
                   bool closed, double weight, std::vector<Vec2>& control) {
@@ -69,15 +111,17 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
   };
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
   double ders[4][4];
+  const BasisTable table(shape);
+  int sp = CubicBSpline::kDegree;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const int sp = shape.span(t[i]);
-    shape.basis(sp, shape.wrap(t[i]), ders, 0);
+    double value[4];
+    sp = table.evaluate(t[i], sp, value);
     int index[4];
     for (int a = 0; a < 4; ++a) index[a] = shape.controlIndex(sp - 3 + a);
     for (int a = 0; a < 4; ++a) {
-      rhs(index[a], 0) += ders[0][a] * pts[i].x();
-      rhs(index[a], 1) += ders[0][a] * pts[i].y();
-      for (int b = 0; b < 4; ++b) add(index[a], index[b], ders[0][a] * ders[0][b]);
+      rhs(index[a], 0) += value[a] * pts[i].x();
+      rhs(index[a], 1) += value[a] * pts[i].y();
+      for (int b = 0; b < 4; ++b) add(index[a], index[b], value[a] * value[b]);
     }
   }
   // Jerk energy: C''' is constant on each span, so integral = sum over spans of width * |C'''|^2.
@@ -109,6 +153,65 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
   return true;
 }
 
+// The normal equations at fixed parameters t, kept apart: the data part B^T B and B^T X,
+// the jerk Gram matrix, and each point's four basis values. The fairness search solves
+// them for many weights without touching the points again (dense systems only).
+struct FixedParameterSystem {
+  Eigen::MatrixXd data, gram, rhs;
+  std::vector<std::array<int, 4>> index;
+  std::vector<std::array<double, 4>> basis;
+
+  FixedParameterSystem(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
+                       bool closed) {
+    const int n = controlCount(breaks, closed);
+    const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
+    data = gram = Eigen::MatrixXd::Zero(n, n);
+    rhs = Eigen::MatrixXd::Zero(n, 2);
+    index.resize(pts.size());
+    basis.resize(pts.size());
+    double ders[4][4];
+    const BasisTable table(shape);
+    int sp = CubicBSpline::kDegree;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      double value[4];
+      sp = table.evaluate(t[i], sp, value);
+      for (int a = 0; a < 4; ++a) {
+        index[i][a] = shape.controlIndex(sp - 3 + a);
+        basis[i][a] = value[a];
+        rhs(index[i][a], 0) += value[a] * pts[i].x();
+        rhs(index[i][a], 1) += value[a] * pts[i].y();
+      }
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) data(index[i][a], index[i][b]) += value[a] * value[b];
+    }
+    for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
+      const double width = breaks[j + 1] - breaks[j], mid = 0.5 * (breaks[j] + breaks[j + 1]);
+      const int sp = shape.span(mid);
+      shape.basis(sp, mid, ders);
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+          gram(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b)) += width * ders[3][a] * ders[3][b];
+    }
+  }
+  // Control points for jerk weight w (the same scaling as solveControl) and the distances
+  // of the points from their (unmoved) parameters on that spline; false if singular.
+  bool solve(double weight, const std::vector<Vec2>& pts, std::vector<Vec2>& control, std::vector<double>& dist) const {
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(data + weight * static_cast<double>(pts.size()) * gram);
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::MatrixXd x = ldlt.solve(rhs);
+    if (!x.allFinite()) return false;
+    control.resize(x.rows());
+    for (Eigen::Index k = 0; k < x.rows(); ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+    dist.resize(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      Vec2 c = Vec2::Zero();
+      for (int a = 0; a < 4; ++a) c += basis[i][a] * control[index[i][a]];
+      dist[i] = (c - pts[i]).norm();
+    }
+    return true;
+  }
+};
+
 // Newton steps towards the foot point of each X_i; returns per-point distances. The
 // spline is evaluated from its per-span polynomials (Horner), the hot loop of smoothing.
 void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts, int steps,
@@ -117,9 +220,12 @@ void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts,
   std::vector<std::array<Vec2, 4>> poly(last - first + 1);
   for (int i = first; i <= last; ++i) poly[i - first] = spline.spanPolynomial(i);
   const auto& knots = spline.knots();
+  int span = first;  // walks along with the points (they come in order)
   auto eval = [&](double ti, Vec2& c0, Vec2& c1, Vec2& c2) {
     ti = spline.wrap(ti);
-    const int i = spline.span(ti);
+    while (span < last && ti >= knots[span + 1]) ++span;
+    while (span > first && ti < knots[span]) --span;
+    const int i = span;
     const double u = ti - knots[i];
     const auto& c = poly[i - first];
     c0 = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
@@ -245,15 +351,29 @@ SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const Sm
   auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
   if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0) {
     double lo = std::log(weight), hi = std::log(options.max_fairness);
-    Attempt probe = current;
-    if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && acceptable(probe)) {
+    const bool dense = controlCount(breaks, closed) <= kDenseLimit;
+    // A trial weight: at the parameters held (distances from them are upper bounds of the
+    // foot distances, so a weight found acceptable is), cheap for a dense system; else a
+    // full attempt with its own foot correction.
+    std::optional<FixedParameterSystem> fixed;
+    if (dense) fixed.emplace(pts, current.t, breaks, closed);
+    auto trialAt = [&](double w, Attempt& a) {
+      a = current;
+      if (!fixed) return attempt(pts, breaks, closed, w, options.foot_point_steps, a);
+      if (!fixed->solve(w, pts, a.control, a.dist)) return false;
+      a.max_error = *std::max_element(a.dist.begin(), a.dist.end());
+      return true;
+    };
+    const double start_weight = weight;
+    Attempt probe;
+    if (trialAt(options.max_fairness, probe) && acceptable(probe)) {
       current = probe;
       weight = options.max_fairness;
     } else {
       for (int k = 0; k < options.fairness_steps; ++k) {
         const double mid = 0.5 * (lo + hi);
-        Attempt trial = current;
-        if (attempt(pts, breaks, closed, std::exp(mid), options.foot_point_steps, trial) && acceptable(trial)) {
+        Attempt trial;
+        if (trialAt(std::exp(mid), trial) && acceptable(trial)) {
           current = std::move(trial);
           lo = mid;
           weight = std::exp(mid);
@@ -261,6 +381,13 @@ SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const Sm
           hi = mid;
         }
       }
+    }
+    // The chosen weight once more with the foot points corrected.
+    if (dense && weight != start_weight) {
+      Attempt final_fit = current;
+      if (attempt(pts, breaks, closed, weight, options.foot_point_steps, final_fit) &&
+          final_fit.max_error <= options.tolerance)
+        current = std::move(final_fit);
     }
   }
 
