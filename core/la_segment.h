@@ -10,8 +10,9 @@
 // inflection end, seed 003 section 2.2). Curvature is signed, left turn positive.
 //
 // The tangent angle theta(s) has a closed form (the integral of kappa); positions
-// are integrals of (cos theta, sin theta) by Gauss-Legendre quadrature, adaptive
-// where the integrand is singular. The closed forms are written with log1p/expm1 so
+// are integrals of (cos theta, sin theta) by adaptive Gauss-Legendre quadrature, except
+// next to an inflection end (kappa = 0, singular law), where a power series gives them
+// exactly (inflectionOffset). The closed forms are written with log1p/expm1 so
 // that near-circular segments (curvature ratio close to 1) lose no precision.
 
 #include <array>
@@ -105,6 +106,8 @@ class LaSegment {
   // no inflection end or [s0, s1] reaches too far from it for the series.
   bool panelNearInflection(double s0, double s1, Vec2& delta) const;
   Vec2 inflectionOffset(double r, double heading, double turn_sign) const;
+  // The distance from the inflection end within which panelNearInflection applies.
+  double inflectionSeriesReach() const;
   // theta(s) and kappa(s) together (they share the law's logarithm).
   void thetaKappa(double s, double& theta, double& kappa) const;
 
