@@ -62,6 +62,9 @@ class LaSegment {
   /// d kappa / ds; infinite at an inflection end where the law is singular (alpha < -1).
   double dkappa(double s) const;
   double theta(double s) const;
+  /// theta(s) and kappa(s) together, for the cost of about one of them (they share the
+  /// law's logarithm): for inner loops that need both.
+  void thetaKappa(double s, double& theta, double& kappa) const;
   Vec2 tangent(double s) const { return unitVector(theta(s)); }
   /// Position at arc length s, to relative_tolerance * length.
   Vec2 position(double s, double relative_tolerance = kDefaultRelativeTolerance) const;
@@ -108,8 +111,6 @@ class LaSegment {
   Vec2 inflectionOffset(double r, double heading, double turn_sign) const;
   // The distance from the inflection end within which panelNearInflection applies.
   double inflectionSeriesReach() const;
-  // theta(s) and kappa(s) together (they share the law's logarithm).
-  void thetaKappa(double s, double& theta, double& kappa) const;
 
   double alpha_, length_;
   Vec2 start_;

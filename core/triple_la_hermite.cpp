@@ -310,9 +310,48 @@ struct PartLaw {
   double ell = 0.0;          // length of the piece
   double s_in_piece = 0.0;   // the part's start in the piece
   double qa = 0.0, qb = 0.0; // y at the piece's ends
-  double log_r = 0.0;        // alpha > 0: log(q_b / q_a) with q = |k|^(-alpha)
-  bool zero_end = false;     // the part reaches kappa = 0 at an end
+  double ratio = 1.0;        // alpha > 0: q_b / q_a with q = |k|^(-alpha), or q_a / q_b, whichever is <= 1
+  // A part that reaches kappa = 0 at an end (alpha < 0): with r the distance from that
+  // end and lambda the part's length, y = y_far r / lambda (y is linear and 0 there),
+  // kappa = kappa_far (r / lambda)^beta and theta = theta_zero +- kappa r / (1 + beta),
+  // all without cancellation next to the zero end.
+  bool zero_end = false;
+  bool zero_at_start = false;
+  double part_length = 0.0;
+  double y_far = 0.0, kappa_far = 0.0, theta_zero = 0.0;
 };
+
+PartLaw partLaw(const Problem& pb, const Part& part, const std::array<double, 4>& y, double length) {
+  const LaSegment& seg = part.seg;
+  PartLaw law;
+  law.piece = part.piece;
+  law.ell = kPieceFraction[part.piece] * length;
+  law.s_in_piece = part.s_in_piece;
+  law.qa = y[part.piece];
+  law.qb = y[part.piece + 1];
+  if (!pb.signed_power && pb.alpha != 0.0) {
+    const double log_r = -pb.alpha * (law.qb - law.qa);
+    law.ratio = std::exp(-std::abs(log_r));
+  }
+  law.zero_end = seg.kappaStart() == 0.0 || seg.kappaEnd() == 0.0;
+  if (law.zero_end) {
+    law.zero_at_start = seg.kappaStart() == 0.0;
+    law.part_length = seg.length();
+    // the far end of a part with its zero at the start is the piece's end, and vice versa
+    law.y_far = law.zero_at_start ? law.qb : law.qa;
+    law.kappa_far = law.zero_at_start ? seg.kappaEnd() : seg.kappaStart();
+    law.theta_zero = law.zero_at_start ? seg.theta0() : seg.theta(seg.length());
+  }
+  return law;
+}
+
+/// x^n for a small n >= 0 (the panel substitution's power).
+inline double integerPower(double x, int n) {
+  double r = 1.0;
+  for (; n > 0; n >>= 1, x *= x)
+    if (n & 1) r *= x;
+  return r;
+}
 
 template <int N>
 void accumulatePanel(const Problem& pb, const LaSegment& seg, const PartLaw& law, const Panel& p, Sums& sums) {
@@ -322,17 +361,32 @@ void accumulatePanel(const Problem& pb, const LaSegment& seg, const PartLaw& law
   const int j = law.piece;
   for (int k = 0; k < N; ++k) {
     const double t = rule.node[k];
-    double s, dsdt;
+    double d, dsdt;  // distance from the panel's starting end (lo, or hi if from_hi); ds/dt
     if (p.power == 1) {
-      s = p.from_hi ? p.hi - h * t : p.lo + h * t;
+      d = h * t;
       dsdt = h;
     } else {
-      const double tp = std::pow(t, p.power - 1);
-      s = p.from_hi ? p.hi - h * tp * t : p.lo + h * tp * t;
+      const double tp = integerPower(t, p.power - 1);
+      d = h * tp * t;
       dsdt = h * p.power * tp;
     }
-    th[k] = seg.theta(s);
-    const double kappa = seg.kappa(s);
+    const double s = p.from_hi ? p.hi - d : p.lo + d;
+    double kappa, f = 0.0;  // f: d kappa / d v for the signed power law (see below)
+    if (law.zero_end) {
+      // r from the zero end, exact on the substituted panel there (lo = 0, or hi = the part's length)
+      double r;
+      if (law.zero_at_start) r = p.from_hi ? s : p.lo + d;
+      else r = p.from_hi ? (law.part_length - p.hi) + d : law.part_length - s;
+      const double rel = r / law.part_length;
+      kappa = (rel > 0.0) ? law.kappa_far * std::exp(pb.beta * std::log(rel)) : 0.0;
+      const double turned = kappa * r / (1.0 + pb.beta);
+      th[k] = law.zero_at_start ? law.theta_zero + turned : law.theta_zero - turned;
+      // kappa = F(v) = sign(v) |v|^beta, F' = beta kappa / v with v = y_far r / lambda
+      // (F' is taken as 0 where kappa = 0: a straight part, or a node rounded onto the zero end)
+      if (kappa != 0.0) f = pb.beta * kappa / (law.y_far * rel);
+    } else {
+      seg.thetaKappa(s, th[k], kappa);
+    }
     c[k] = std::cos(th[k]);
     sn[k] = std::sin(th[k]);
     w[k] = rule.weight[k] * dsdt;
@@ -340,12 +394,7 @@ void accumulatePanel(const Problem& pb, const LaSegment& seg, const PartLaw& law
     const double u = (law.s_in_piece + s) / law.ell, u1 = 1.0 - u;
     double da, db;
     if (pb.signed_power) {  // kappa = F(v), v = qa (1-u) + qb u, F' = beta kappa / v
-      // Next to a zero-curvature end v cancels to noise; there kappa / v = |kappa|^(1 + alpha)
-      // (as |v| = |kappa|^(-alpha)) keeps full precision.
-      double f;
-      if (law.zero_end) {
-        f = (kappa == 0.0) ? 0.0 : pb.beta * std::pow(std::abs(kappa), 1.0 + pb.alpha);
-      } else {
+      if (!law.zero_end) {
         const double v = law.qa * u1 + law.qb * u;
         f = (v == 0.0) ? 0.0 : pb.beta * kappa / v;
       }
@@ -354,12 +403,12 @@ void accumulatePanel(const Problem& pb, const LaSegment& seg, const PartLaw& law
     } else if (pb.alpha == 0.0) {  // kappa = sigma exp(ya (1-u) + yb u)
       da = kappa * u1;
       db = kappa * u;
-    } else if (law.log_r <= 0.0) {  // kappa = sigma v^(-1/alpha): dk/dya = kappa (1-u) qa / v
-      const double r = std::exp(law.log_r), den = u1 + r * u;
+    } else if (law.qb >= law.qa) {  // kappa = sigma q^(-1/alpha), q = |k|^(-alpha) linear: dk/dya = kappa (1-u) q_a / q
+      const double r = law.ratio, den = u1 + r * u;  // r = q_b / q_a <= 1
       da = kappa * u1 / den;
       db = kappa * u * r / den;
     } else {
-      const double ir = std::exp(-law.log_r), den = u1 * ir + u;
+      const double ir = law.ratio, den = u1 * ir + u;  // ir = q_a / q_b < 1
       da = kappa * u1 * ir / den;
       db = kappa * u / den;
     }
@@ -403,14 +452,7 @@ Evaluation evaluate(const Problem& pb, const Vars& x, Workspace& ws) {
   Sums sums;
   for (const Part& part : ws.parts) {
     const LaSegment& seg = part.seg;
-    PartLaw law;
-    law.piece = part.piece;
-    law.ell = kPieceFraction[part.piece] * length;
-    law.s_in_piece = part.s_in_piece;
-    law.qa = y[part.piece];
-    law.qb = y[part.piece + 1];
-    law.log_r = -pb.alpha * (law.qb - law.qa);
-    law.zero_end = seg.kappaStart() == 0.0 || seg.kappaEnd() == 0.0;
+    const PartLaw law = partLaw(pb, part, y, length);
     layoutPanels(pb, seg, ws.panels);
     for (const Panel& p : ws.panels) {
       if (p.nodes == kEasyNodes) accumulatePanel<kEasyNodes>(pb, seg, law, p, sums);
