@@ -427,12 +427,14 @@ void accumulatePanel(const Problem& pb, const LaSegment& seg, const PartLaw& law
   }
   const double reversed = p.from_hi ? -1.0 : 1.0;
   const double base1 = sums.g[0] + (p.from_hi ? t1 : 0.0), base2 = sums.g[1] + (p.from_hi ? t2 : 0.0);
+  // y1 does not move piece 2's curvature nor y2 piece 0's: skip their zero integrals.
+  const bool moves1 = j != 2, moves2 = j != 0;
   for (int k = 0; k < N; ++k) {
     double i1 = 0.0, i2 = 0.0;
-    for (int m = 0; m < N; ++m) {
-      i1 += rule.integral[k][m] * f1[m];
-      i2 += rule.integral[k][m] * f2[m];
-    }
+    if (moves1)
+      for (int m = 0; m < N; ++m) i1 += rule.integral[k][m] * f1[m];
+    if (moves2)
+      for (int m = 0; m < N; ++m) i2 += rule.integral[k][m] * f2[m];
     const Vec2 wt = w[k] * Vec2(-sn[k], c[k]);  // w i exp(i theta)
     sums.d_log_length += (th[k] - pb.phi0) * wt;
     sums.d_y[0] += (base1 + reversed * i1) * wt;
