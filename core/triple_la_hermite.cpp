@@ -64,6 +64,12 @@ constexpr double kMaxNormalizedLength = 1e4;
 // The fast model's residual is ~1e-15; below this the line search may stall on rounding,
 // and the verified residual decides.
 constexpr double kFastNoiseFloor = 1e-10;
+// Newton takes its last full step unevaluated when the contraction of the previous full
+// step (norm_new / norm_old^2) predicts a residual below this fraction of the target;
+// the verification checks the result anyway. Measured on the benchmark's end
+// conditions for alpha = -3 to 3 in steps of 0.25 (174 such steps), the skipped
+// evaluation would have shown at most 2.5e-14 against the target 1e-13.
+constexpr double kSkipConfirmFactor = 0.1;
 // Lengths tried (times the Bezier estimate) when Newton fails from the first start.
 constexpr std::array<double, 4> kLengthFactors = {0.7, 1.5, 2.5, 0.5};
 // Continuation from the triple clothoid: steps in alpha.
@@ -516,6 +522,8 @@ Attempt newtonSolve(const Problem& pb, Vars x, const TripleLaHermiteOptions& opt
   double norm = ev.residual.lpNorm<Eigen::Infinity>();
   const double target = 0.1 * opt.tolerance;
   int damped_steps = 0;
+  // Quadratic convergence: after a full step norm_new ~ contraction * norm_old^2.
+  double contraction = INFINITY;
   while (norm > target) {
     if (at.iterations >= opt.max_iterations) {
       at.why = "iteration limit of the Newton iteration";
@@ -538,6 +546,12 @@ Attempt newtonSolve(const Problem& pb, Vars x, const TripleLaHermiteOptions& opt
                                            : kMaxLogKappaStep;
       if (std::abs(dx[i]) > limit) scale = std::min(scale, limit / std::abs(dx[i]));
     }
+    if (scale == 1.0 && contraction * norm * norm <= kSkipConfirmFactor * target) {
+      // The full step is predicted to land well below the target: take it without
+      // evaluating the fast model there; the verification below checks it.
+      x += dx;
+      break;
+    }
     bool accepted = false;
     double t = scale;
     if (t < 0.125) ++damped_steps;
@@ -553,6 +567,7 @@ Attempt newtonSolve(const Problem& pb, Vars x, const TripleLaHermiteOptions& opt
           at.residual = norm_try;
           return at;
         }
+        contraction = (t == 1.0) ? norm_try / (norm * norm) : INFINITY;
         x = x_try;
         ev = ev_try;
         norm = norm_try;

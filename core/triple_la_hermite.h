@@ -47,8 +47,10 @@
 //
 // Every result is verified: the Curve is rebuilt from its LaSegments with positions
 // by LaSegment::end (adaptive quadrature), and only if the end point and angle match
-// to the tolerance is the status kConverged. A miss after Newton on the fast panels is
-// corrected by a few steps with the verified residual and the fast Jacobian.
+// to the tolerance is the status kConverged. Newton's last step is not evaluated on the
+// fast panels when the previous step's quadratic contraction predicts it lands far below
+// the target; the verification checks it instead. A miss after Newton on the fast panels
+// is corrected by a few steps with the verified residual and the fast Jacobian.
 
 #include <limits>
 #include <optional>
