@@ -23,7 +23,7 @@ constexpr double kSeriesMaxRatio = 0.1;
 // f ~ turning^4, below 3e-12 h as the 2-point Gauss-Legendre rule it replaces was at
 // 0.01 rad (h f/4320); it needs one series evaluation less per panel.
 constexpr double kSimpsonTurning = 0.009;
-// The inflection series (panelNearInflection) is used up to this turning from the
+// The inflection series (panelNearInflection, position) is used up to this turning from the
 // inflection point: its terms fall like turning^k / k!, below 1e-17 after ~20 terms.
 constexpr double kInflectionSeriesMaxTurning = 1.0;
 constexpr int kInflectionSeriesMaxTerms = 40;

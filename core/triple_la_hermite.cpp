@@ -689,8 +689,8 @@ bool usableStart(const Problem& pb, const Vars& x) {
 }
 
 /// linearStart's two small-deflection conditions with the LA law itself in place of
-/// the piecewise linear curvature (for alpha = -1 they coincide up to the law's shape):
-/// with L fixed,
+/// the piecewise linear curvature (for alpha = -1 the law is that profile, and the linear
+/// start is returned as it is); with L fixed,
 ///   F1 = L integral_0^1 kappa d sigma - T = 0,  F2 = phi0 + L integral_0^1 (1 - sigma) kappa d sigma = 0,
 /// solved for (y1, y2) by damped Newton from the linear start `linear`, kappa and its
 /// derivatives by the piece law on kLawStartNodes Gauss-Legendre nodes per piece. For
