@@ -9,6 +9,8 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "core/lcg.h"
 #include "core/three_point_segment.h"
 #include "fitting/chain_fit.h"
@@ -33,6 +35,9 @@ constexpr double kPolishStartAlpha = 0.5;
 // data: fewer points lose alpha accuracy, more steps buy little but time.
 constexpr std::size_t kFitPoints = 300;
 constexpr int kFitIterations = 8;
+// A G2 chain from stage 7 replaces one with curvature gaps unless it strays further than
+// this many times that chain's largest deviation (and the tolerance).
+constexpr double kG2Preference = 2.0;
 constexpr int kAlphaBisections = 12;
 constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
@@ -678,13 +683,12 @@ PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vec
 // The chain stage 7 starts from where stages 5-6 found none (a piece whose tangents form
 // no control triangle, a joint no tangent angle makes G2): read off the spline in
 // intrinsic form. A piece turning against both its neighbours (between two inflections)
-// is cut at its largest curvature first (`spans` is updated). Each piece has the
-// spline's length; its end curvatures are the spline's at the joints (0 where the
-// turning direction changes, an inflection; a small value of the piece's sign where the
-// spline's has the other), scaled so that the piece turns as the spline does (shared at
-// a joint: the geometric mean of the two pieces' scales); alpha is the fit's prior (-1
-// next to an inflection). G2 by construction; its positions drift from the points by
-// the spline's curvature errors, which the fit removes.
+// is cut at its largest curvature first (`spans` is updated). Each piece turns as the
+// spline does between its splits; a joint's curvature is 0 where the turning direction
+// changes (an inflection), else the spline's (a small value of the piece's sign where the
+// spline's has the other) to start with, then adjusted as each segment is shot towards
+// the next split point (below). G2 by construction; empty if some piece has no LA
+// segment.
 std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed) {
   constexpr int kSteps = 16;           // per piece, for its turning and length
   constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
@@ -741,40 +745,73 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
     const double mean = std::abs(turning[piece]) / std::max(length[piece], 1e-300);
     kappa[j] = sign(k) == s && std::abs(k) > kSmallKappa * mean ? k : s * kSmallKappa * mean;
   }
-  // Scale each piece's curvature to its turning; a joint takes its pieces' mean scale.
-  auto alphaOf = [&](double k0, double k1) { return (k0 == 0.0 || k1 == 0.0) ? -1.0 : kPolishStartAlpha; };
-  std::vector<double> scale(n, 1.0);
-  try {
-    for (std::size_t i = 0; i < n; ++i) {
-      const double k0 = kappa[i], k1 = kappa[(i + 1) % joints];
-      if (k0 == 0.0 && k1 == 0.0) return {};
-      const double t = LaSegment(alphaOf(k0, k1), length[i], Vec2::Zero(), 0.0, k0, k1).turning();
-      scale[i] = std::clamp(turning[i] / t, 0.1, 10.0);
+  // Shoot segment by segment: each starts where the previous ended (tangent and
+  // curvature continuous), turns as the spline does between its splits, and takes the
+  // end curvature and alpha that bring its end closest to the next split point (Gauss-
+  // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
+  // then follows the spline's joints instead of drifting with its curvature errors.
+  std::vector<LaSegment> chain;
+  Vec2 start = spline.point(spline.wrap(spans.front().t0));
+  double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
+    const bool free_end = kappa[(i + 1) % joints] != 0.0;
+    const double end_sign = sign(turning[i]);
+    const Vec2 target = spline.point(spline.wrap(spans[i].t1));
+    // unknowns: y = log|kappa_end| (when not an inflection), alpha
+    double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
+    const bool zero_end = k0 == 0.0 || !free_end;
+    const double hi = zero_end ? -0.2 : 3.0;
+    double alpha = zero_end ? -1.0 : kPolishStartAlpha;
+    auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
+      const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
+      try {
+        const double unit = std::abs(LaSegment(aa, 1.0, Vec2::Zero(), 0.0, k0, k1).turning());
+        if (!(unit > 0.0)) return std::nullopt;
+        return LaSegment(aa, std::abs(turning[i]) / unit, start, theta, k0, k1);
+      } catch (const std::invalid_argument&) {
+        return std::nullopt;
+      }
+    };
+    auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
+      const auto seg = build(yy, aa);
+      if (!seg) return std::nullopt;
+      return Vec2(seg->end() - target);
+    };
+    constexpr int kShootingSteps = 8;
+    constexpr double kStep = 1e-4;
+    for (int it = 0; it < kShootingSteps; ++it) {
+      const auto r = miss(y, alpha);
+      if (!r) break;
+      Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
+      const auto ra = miss(y, alpha + kStep);
+      if (!ra) break;
+      jac.col(1) = (*ra - *r) / kStep;
+      if (free_end) {
+        const auto ry = miss(y + kStep, alpha);
+        if (!ry) break;
+        jac.col(0) = (*ry - *r) / kStep;
+      }
+      // least-squares step, damped a little, both unknowns limited in size
+      Eigen::Matrix2d a = jac.transpose() * jac;
+      a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
+      const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
+      if (!step.allFinite()) break;
+      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), -3.0, hi);
+      const auto rn = miss(ny, na);
+      if (!rn || rn->norm() >= r->norm()) break;
+      y = ny;
+      alpha = na;
     }
-    for (std::size_t j = 0; j < joints; ++j) {
-      const bool has_before = closed || j > 0, has_after = closed || j < n;
-      const double a = has_before ? scale[(j + n - 1) % n] : scale[j % n], b = has_after ? scale[j % n] : a;
-      kappa[j] *= std::sqrt(a * b);
-    }
-    std::vector<LaSegment> chain;
-    Vec2 start = spline.point(spline.wrap(spans.front().t0));
-    double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
-    for (std::size_t i = 0; i < n; ++i) {
-      const double k0 = kappa[i], k1 = kappa[(i + 1) % joints];
-      chain.emplace_back(alphaOf(k0, k1), length[i], start, theta, k0, k1);
-      start = chain.back().end();
-      theta = chain.back().theta(chain.back().length());
-    }
-    return chain;
-  } catch (const std::invalid_argument&) {
-    return {};
+    const auto seg = build(y, alpha);
+    if (!seg) return {};
+    chain.push_back(*seg);
+    start = chain.back().end();
+    theta = chain.back().theta(chain.back().length());
   }
+  return chain;
 }
 
-// Stage 7 on one part: fits its chain to the points and selects its segments
-// (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
-// the spline. The result replaces the part's chain where it is within the tolerance or
-// closer to the points than that chain; fit.max_dev is then known.
 void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
                 const FitOptions& options) {
   SelectionOptions so;
@@ -812,8 +849,11 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     if (segments.empty()) return;
   }
   if (polished.max_distance > tol) {
+    // Outside the tolerance: kept if closer to the points than the chain it started from,
+    // or, where that chain has curvature gaps, if not much further (G2 is the promise).
     fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
-    if (polished.max_distance >= fit.max_dev) return;
+    const double allowed = fit.g2.usable() ? fit.max_dev : std::max(tol, kG2Preference * fit.max_dev);
+    if (polished.max_distance >= allowed) return;
   }
   fit.max_dev = polished.max_distance;
   fit.warnings.clear();
