@@ -812,6 +812,61 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
   return chain;
 }
 
+// The piece reports of a chain stage 7 made (its segments need not be the segmentation's
+// pieces any more): each segment's span of spline parameters (those of the points whose
+// feet are on it), the kind of its ends (an inflection where the curvature is 0, an
+// extremum where |kappa| turns, else a cut by turning), its kind, alpha, and the LCG of
+// the smoothed stroke over it.
+std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const std::vector<ChainFoot>& feet,
+                                   const std::vector<double>& parameters, const CubicBSpline& spline, bool closed) {
+  const std::size_t n = segments.size();
+  const double period = spline.tMax() - spline.tMin();
+  std::vector<PieceReport> out(n);
+  std::vector<bool> seen(n, false);
+  for (std::size_t k = 0; k < feet.size() && k < parameters.size(); ++k) {
+    PieceReport& r = out[feet[k].segment];
+    double t = parameters[k];
+    if (!seen[feet[k].segment]) {
+      r.t0 = r.t1 = t;
+      seen[feet[k].segment] = true;
+      continue;
+    }
+    if (closed && t < r.t1) t += period;  // through the seam
+    r.t1 = t;
+  }
+  auto trend = [](const LaSegment& s) { return std::abs(s.kappaEnd()) > std::abs(s.kappaStart()); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const LaSegment& seg = segments[i];
+    PieceReport& r = out[i];
+    if (!seen[i]) r.t0 = r.t1 = i > 0 ? out[i - 1].t1 : spline.tMin();
+    auto kindAt = [&](std::size_t joint) {
+      if (!closed && (joint == 0 || joint == n)) return SplitKind::kEnd;
+      const LaSegment& before = segments[(joint + n - 1) % n];
+      const LaSegment& after = segments[joint % n];
+      if (after.kappaStart() == 0.0) return SplitKind::kInflection;
+      return trend(before) != trend(after) ? SplitKind::kExtremum : SplitKind::kTurning;
+    };
+    r.start_kind = kindAt(i);
+    r.end_kind = kindAt(i + 1);
+    r.kind = seg.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+             : seg.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                     : PieceKind::kThreePoint;
+    r.alpha = seg.alpha();
+    if (r.t1 > r.t0) {
+      const LcgFit lcg = lcgOfPiece(spline, r.t0, r.t1);
+      r.lcg_alpha = lcg.alpha;
+      r.lcg_r2 = lcg.r2;
+    } else {
+      r.lcg_alpha = r.lcg_r2 = NAN;
+    }
+  }
+  return out;
+}
+
+// Stage 7 on one part: fits its chain to the points and selects its segments
+// (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
+// the spline. The result replaces the part's chain where it is within the tolerance or
+// closer to the points than that chain; fit.max_dev is then known.
 void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
                 const FitOptions& options) {
   SelectionOptions so;
@@ -860,11 +915,9 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   if (polished.max_distance > tol) fit.warnings.push_back("some segments stay further than the tolerance from the points");
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
-  fit.reports.resize(segments.size(), fit.reports.back());
-  for (std::size_t i = 0; i < fit.segments.size(); ++i) {
-    fit.reports[i].alpha = fit.segments[i].alpha();
-    if (i < polished.alpha_standard_error.size()) fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
-  }
+  fit.reports = reportsOf(fit.segments, polished.feet, fit.parameters, *fit.spline, part.closed);
+  for (std::size_t i = 0; i < fit.reports.size() && i < polished.alpha_standard_error.size(); ++i)
+    fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
 }
 
 }  // namespace
