@@ -92,40 +92,58 @@ class BasisTable {
   std::vector<std::array<std::array<double, 4>, 4>> coefficients_;
 };
 
-// Solves the penalized least squares for fixed breaks and parameters.
-bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
-                  bool closed, double weight, std::vector<Vec2>& control) {
-  const int n = controlCount(breaks, closed);
-  // A template spline (zero control) gives the knot vector and basis functions.
-  const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
-  // The normal equations are banded (a point touches 4 consecutive control points; the
-  // periodic case wraps around): accumulated dense when small, else as sparse triplets.
-  const bool dense = n <= kDenseLimit;
-  Eigen::MatrixXd a_dense;
-  std::vector<Eigen::Triplet<double>> triplets;
-  if (dense) a_dense = Eigen::MatrixXd::Zero(n, n);
-  else triplets.reserve(pts.size() * 16 + breaks.size() * 16);
-  auto add = [&](int r, int c, double v) {
-    if (dense) a_dense(r, c) += v;
-    else triplets.emplace_back(r, c, v);
-  };
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  double ders[4][4];
+// The data part of the normal equations, B^T B and B^T X, for points at parameters t:
+// each point touches only its span's four control points, so the products are summed
+// per span (one triangle) and handed to add(row, column, value) and rhs once per span.
+// Each point's control indices and basis values are kept if asked for.
+template <typename Add>
+void accumulateData(const CubicBSpline& shape, const std::vector<Vec2>& pts, const std::vector<double>& t,
+                    Eigen::MatrixXd& rhs, Add&& add, std::vector<std::array<int, 4>>* indices = nullptr,
+                    std::vector<std::array<double, 4>>* values = nullptr) {
   const BasisTable table(shape);
+  double block[4][4] = {}, bx[4] = {}, by[4] = {};
+  int open_span = -1;
+  auto flush = [&] {
+    if (open_span < 0) return;
+    for (int a = 0; a < 4; ++a) {
+      const int ia = shape.controlIndex(open_span - 3 + a);
+      rhs(ia, 0) += bx[a];
+      rhs(ia, 1) += by[a];
+      bx[a] = by[a] = 0.0;
+      for (int b = a; b < 4; ++b) {
+        const int ib = shape.controlIndex(open_span - 3 + b);
+        add(ia, ib, block[a][b]);
+        if (b != a) add(ib, ia, block[a][b]);
+        block[a][b] = 0.0;
+      }
+    }
+  };
+  if (indices) indices->resize(pts.size());
+  if (values) values->resize(pts.size());
   int sp = CubicBSpline::kDegree;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    double value[4];
-    sp = table.evaluate(t[i], sp, value);
-    int index[4];
-    for (int a = 0; a < 4; ++a) index[a] = shape.controlIndex(sp - 3 + a);
+    double v[4];
+    sp = table.evaluate(t[i], sp, v);
+    if (sp != open_span) {
+      flush();
+      open_span = sp;
+    }
     for (int a = 0; a < 4; ++a) {
-      rhs(index[a], 0) += value[a] * pts[i].x();
-      rhs(index[a], 1) += value[a] * pts[i].y();
-      for (int b = 0; b < 4; ++b) add(index[a], index[b], value[a] * value[b]);
+      bx[a] += v[a] * pts[i].x();
+      by[a] += v[a] * pts[i].y();
+      for (int b = a; b < 4; ++b) block[a][b] += v[a] * v[b];
+      if (indices) (*indices)[i][a] = shape.controlIndex(sp - 3 + a);
+      if (values) (*values)[i][a] = v[a];
     }
   }
-  // Jerk energy: C''' is constant on each span, so integral = sum over spans of width * |C'''|^2.
-  const double scale = weight * static_cast<double>(pts.size());
+  flush();
+}
+
+// The jerk Gram matrix (times scale): C''' is constant on each span, so the integral of
+// |C'''|^2 is the sum over spans of width * |C'''|^2.
+template <typename Add>
+void accumulateJerk(const CubicBSpline& shape, const std::vector<double>& breaks, double scale, Add&& add) {
+  double ders[4][4];
   for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
     const double width = breaks[j + 1] - breaks[j];
     const double mid = 0.5 * (breaks[j] + breaks[j + 1]);
@@ -135,12 +153,38 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
       for (int b = 0; b < 4; ++b)
         add(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b), scale * width * ders[3][a] * ders[3][b]);
   }
+}
+
+std::vector<Vec2> controlOf(const Eigen::MatrixXd& x) {
+  std::vector<Vec2> control(x.rows());
+  for (Eigen::Index k = 0; k < x.rows(); ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+  return control;
+}
+
+// Solves the penalized least squares for fixed breaks and parameters.
+bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
+                  bool closed, double weight, std::vector<Vec2>& control) {
+  const int n = controlCount(breaks, closed);
+  // A template spline (zero control) gives the knot vector and basis functions.
+  const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  const double scale = weight * static_cast<double>(pts.size());
   Eigen::MatrixXd x;
-  if (dense) {
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a_dense);
+  // The normal equations are banded (the periodic case wraps around): dense when small,
+  // else sparse.
+  if (n <= kDenseLimit) {
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    auto add = [&](int r, int c, double v) { a(r, c) += v; };
+    accumulateData(shape, pts, t, rhs, add);
+    accumulateJerk(shape, breaks, scale, add);
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
     if (ldlt.info() != Eigen::Success) return false;
     x = ldlt.solve(rhs);
   } else {
+    std::vector<Eigen::Triplet<double>> triplets;
+    auto add = [&](int r, int c, double v) { triplets.emplace_back(r, c, v); };
+    accumulateData(shape, pts, t, rhs, add);
+    accumulateJerk(shape, breaks, scale, add);
     Eigen::SparseMatrix<double> a(n, n);
     a.setFromTriplets(triplets.begin(), triplets.end());
     const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
@@ -148,8 +192,7 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
     x = ldlt.solve(rhs);
   }
   if (!x.allFinite()) return false;
-  control.resize(n);
-  for (int k = 0; k < n; ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+  control = controlOf(x);
   return true;
 }
 
@@ -167,31 +210,8 @@ struct FixedParameterSystem {
     const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
     data = gram = Eigen::MatrixXd::Zero(n, n);
     rhs = Eigen::MatrixXd::Zero(n, 2);
-    index.resize(pts.size());
-    basis.resize(pts.size());
-    double ders[4][4];
-    const BasisTable table(shape);
-    int sp = CubicBSpline::kDegree;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      double value[4];
-      sp = table.evaluate(t[i], sp, value);
-      for (int a = 0; a < 4; ++a) {
-        index[i][a] = shape.controlIndex(sp - 3 + a);
-        basis[i][a] = value[a];
-        rhs(index[i][a], 0) += value[a] * pts[i].x();
-        rhs(index[i][a], 1) += value[a] * pts[i].y();
-      }
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b) data(index[i][a], index[i][b]) += value[a] * value[b];
-    }
-    for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
-      const double width = breaks[j + 1] - breaks[j], mid = 0.5 * (breaks[j] + breaks[j + 1]);
-      const int sp = shape.span(mid);
-      shape.basis(sp, mid, ders);
-      for (int a = 0; a < 4; ++a)
-        for (int b = 0; b < 4; ++b)
-          gram(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b)) += width * ders[3][a] * ders[3][b];
-    }
+    accumulateData(shape, pts, t, rhs, [&](int r, int c, double v) { data(r, c) += v; }, &index, &basis);
+    accumulateJerk(shape, breaks, 1.0, [&](int r, int c, double v) { gram(r, c) += v; });
   }
   // Control points for jerk weight w (the same scaling as solveControl) and the distances
   // of the points from their (unmoved) parameters on that spline; false if singular.
@@ -200,8 +220,7 @@ struct FixedParameterSystem {
     if (ldlt.info() != Eigen::Success) return false;
     const Eigen::MatrixXd x = ldlt.solve(rhs);
     if (!x.allFinite()) return false;
-    control.resize(x.rows());
-    for (Eigen::Index k = 0; k < x.rows(); ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+    control = controlOf(x);
     dist.resize(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
       Vec2 c = Vec2::Zero();
