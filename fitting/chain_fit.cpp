@@ -42,7 +42,7 @@ constexpr double kMaxAlphaStep = 1.0, kMaxRelativeKappaStep = 0.5, kMaxLogTurnin
 struct GridRule {
   double turning, width, grading, smallest;
 };
-constexpr GridRule kFittingGrid{0.25, 0.25, 0.5, 1e-4};
+constexpr GridRule kFittingGrid{0.25, 0.5, 0.5, 1e-4};
 constexpr GridRule kJacobianGrid{0.5, 0.5, 0.25, 1e-3};
 constexpr GridRule kMeasuringGrid{0.1, 0.0625, 0.7071067811865476, 1e-6};
 constexpr int kMaxPanels = 512;
@@ -51,7 +51,7 @@ constexpr int kPanelNodes = 3;  // Gauss-Legendre nodes per panel (the positions
 constexpr double kSeriesLimit = 1e-4;
 // Newton steps per foot and per evaluation (the feet move little between steps), and
 // nodes per segment of the polyline that gives the first feet when none are passed.
-constexpr int kFootSteps = 1, kFirstFootSteps = 3, kFinalFootSteps = 2;
+constexpr int kFootSteps = 1, kFirstFootSteps = 3, kFinalFootSteps = 1;
 constexpr int kCoarseFeetSamples = 64;
 // Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
 constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0, kMaxLambda = 1e10;
@@ -468,6 +468,13 @@ struct Layout {
 using PoseJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic>;  // rows: x, y, angle
 using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
+// J^T J, one triangle computed (the product dominates a step's linear algebra).
+Eigen::MatrixXd normalMatrix(const Jacobian& j) {
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(j.cols(), j.cols());
+  a.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+  return a.selfadjointView<Eigen::Lower>();
+}
+
 // The chain at given unknowns; with derivatives, also the Jet panels and the Jacobian
 // of every segment's start pose by all unknowns.
 struct ChainModel : ChainGeometry {
@@ -703,7 +710,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   for (int local = 0; local < max_iterations; ++local) {
     ++iterations;
     problem.jacobian(model, feet, frames, jac, cjac);
-    const Eigen::MatrixXd a = jac.transpose() * jac;
+    const Eigen::MatrixXd a = normalMatrix(jac);
     const Eigen::VectorXd g = jac.transpose() * r;
     bool accepted = false, converged = false;
     for (; lambda < kMaxLambda; lambda *= kLambdaGrowth) {
@@ -771,7 +778,7 @@ Eigen::VectorXd alphaStandardErrors(const Layout& layout, const ChainProblem& pr
   Jacobian jac;
   Eigen::MatrixXd cjac;
   problem.jacobian(model, feet, frames, jac, cjac);
-  const Eigen::MatrixXd a = jac.transpose() * jac;
+  const Eigen::MatrixXd a = normalMatrix(jac);
   const Eigen::MatrixXd z = cjac.rows() == 0 ? Eigen::MatrixXd::Identity(layout.size, layout.size)
                                              : Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(cjac).kernel());
   const double dof = std::max<double>(1.0, static_cast<double>(r.size()) - static_cast<double>(z.cols()));
@@ -922,9 +929,16 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     used.evaluate(model, used_feet, frames, r, c);
   }
   const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
-  // Every point's foot: from its nearest picked neighbour's, projected afresh.
-  for (std::size_t j = 0; j + 1 < pick.size(); ++j)
-    for (std::size_t k = pick[j]; k < pick[j + 1]; ++k) feet[k] = (k - pick[j] <= pick[j + 1] - k) ? used_feet[j] : used_feet[j + 1];
+  // Every point's foot: between its picked neighbours' (interpolated where they are on
+  // one segment, else the nearer one's), projected afresh.
+  for (std::size_t j = 0; j + 1 < pick.size(); ++j) {
+    const ChainFoot& a = used_feet[j];
+    const ChainFoot& b = used_feet[j + 1];
+    for (std::size_t k = pick[j]; k < pick[j + 1]; ++k) {
+      const double w = static_cast<double>(k - pick[j]) / static_cast<double>(pick[j + 1] - pick[j]);
+      feet[k] = a.segment == b.segment && b.u >= a.u ? ChainFoot{a.segment, a.u + w * (b.u - a.u)} : w <= 0.5 ? a : b;
+    }
+  }
   feet.back() = used_feet.back();
   std::vector<double> distance(m);
   for (std::size_t k = 0; k < m; ++k) {

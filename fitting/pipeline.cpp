@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <cmath>
@@ -33,7 +31,7 @@ constexpr double kPolishStartAlpha = 0.5;
 // Stage 7's fit: points it iterates on (an even subsample) and Levenberg-Marquardt steps
 // per fit. Measured on the ground-truth chains (tests/pipeline_test.cpp) and the shared
 // data: fewer points lose alpha accuracy, more steps buy little but time.
-constexpr std::size_t kFitPoints = 300;
+constexpr std::size_t kFitPoints = 250;
 constexpr int kFitIterations = 8;
 // A G2 chain from stage 7 replaces one with curvature gaps unless it strays further than
 // this many times that chain's largest deviation (and the tolerance).
