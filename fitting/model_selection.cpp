@@ -153,15 +153,28 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
 
 SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
                             const std::vector<ChainFoot>& feet, const SelectionOptions& options) {
+  // A fit that stops at its iteration limit outside the tolerance goes on from where it
+  // stopped, for `patience` times as many steps: a long chain far from its start needs
+  // them, and only such a chain pays for them.
+  auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet) {
+    ChainFitResult r = fitChain(start, points, start_feet, options.fit);
+    if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance) return r;
+    ChainFitOptions longer = options.fit;
+    longer.max_iterations *= options.patience;
+    ChainFitResult more = fitChain(r.segments, points, r.feet, longer);
+    if (!more.improved) return r;
+    more.report.iterations += r.report.iterations;
+    return more;
+  };
   SelectionResult out;
-  out.fit = fitChain(chain, points, feet, options.fit);
+  out.fit = fit(chain, feet);
   const bool closed = options.fit.closed;
   const double n_points = static_cast<double>(points.size());
   auto attempt = [&](const std::optional<Edit>& e) -> std::optional<ChainFitResult> {
     if (!e) return std::nullopt;
     const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
     if (!rebuilt || rebuilt->empty()) return std::nullopt;
-    ChainFitResult r = fitChain(*rebuilt, points, e->feet, options.fit);
+    ChainFitResult r = fit(*rebuilt, e->feet);
     if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
     return r;
   };

@@ -29,6 +29,7 @@ struct SelectionOptions {
   double tolerance = 0.0;     // max distance from any point to the chain (world units, > 0)
   double significance = 4.0;  // F threshold (about the 1% level for a few unknowns and many points)
   int max_edits = 12;         // splits, collapses and merges together
+  int patience = 4;           // a fit outside the tolerance may take this many times fit.max_iterations more
   /// A segment turning less than this (radians) is a collapse candidate; a joint whose
   /// curvature changes by less than this fraction on either side, a merge candidate.
   double sliver_turning = 0.08;
