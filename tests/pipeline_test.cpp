@@ -69,8 +69,10 @@ constexpr int kMaxExtraSegments = 1;
 // of the diagonal (0.1%: the noise level, a fifth of the default tolerance).
 constexpr double kDenseStepFraction = 1e-3;
 // Resolution of the deviation measurement relative to the diagonal: the polyline sagitta
-// of distancesToCurve (1e-6, fitting/quality.cpp) with a factor 2 to spare.
-constexpr double kMeasurementResolution = 2e-6;
+// asked of distancesToCurve (fitting/quality.h; finer than the quality figures' 1e-5)
+// with a factor 2 to spare.
+constexpr double kPolylineSagitta = 1e-6;
+constexpr double kMeasurementResolution = 2 * kPolylineSagitta;
 // Random chains: turning per segment 0.4..1.7 rad (the issue: 0.3..2.0, well below pi;
 // we stay 0.3 inside the pipeline's max_piece_turning = 2.0 so that noise in the
 // smoothed turning does not split a segment by itself), lengths 100..400 units (so
@@ -402,8 +404,8 @@ Deviation deviationFromTruth(const Curve& fitted, const Truth& truth) {
     return d;
   }
   const Dense dense = denseSamples(fitted, kDenseStepFraction * truth.diagonal);
-  const auto [a, at_a] = maxOf(distancesToCurve(truth.curve, dense.point, truth.diagonal));
-  const auto [b, at_b] = maxOf(distancesToCurve(fitted, truth.samples, truth.diagonal));
+  const auto [a, at_a] = maxOf(distancesToCurve(truth.curve, dense.point, truth.diagonal, kPolylineSagitta));
+  const auto [b, at_b] = maxOf(distancesToCurve(fitted, truth.samples, truth.diagonal, kPolylineSagitta));
   d.fit_to_truth = a;
   d.truth_to_fit = b;
   d.worst_segment = dense.segment[at_a];
@@ -722,8 +724,8 @@ TEST(PipelineTruthGenerator, MeasurementsAndTransformsAreConsistent) {
                          Transform::kReverse}) {
       const Truth t = transformed(truthCase(index), tr);
       SCOPED_TRACE(caseName(index, tr));
-      // distancesToCurve measures against a polyline whose sagitta is at most 1e-6 of the
-      // diagonal (fitting/quality.cpp): that is the resolution of every deviation here,
+      // distancesToCurve measures against a polyline whose sagitta is at most
+      // kPolylineSagitta of the diagonal: that is the resolution of every deviation here,
       // far below any tolerance (5e-3 of the diagonal).
       const Deviation self = deviationFromTruth(t.curve, t);
       EXPECT_LT(self.max(), kMeasurementResolution * t.diagonal) << self.where();
