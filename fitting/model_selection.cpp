@@ -21,6 +21,8 @@ constexpr double kZeroEndAlpha = -1.0;
 constexpr double kNewKappaFraction = 0.5;
 // A split cuts at the worst point's foot, kept this far from the segment's ends.
 constexpr double kSplitMargin = 0.15;
+// A split is kept if it brings the worst point within the tolerance or this factor closer.
+constexpr double kMarkedGain = 0.99;
 
 std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain) {
   std::vector<Piece> out;
@@ -233,7 +235,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const ChainFoot at = out.fit.feet[worst];
     const auto r = attempt(split(out.fit.segments, out.fit.feet, at.segment, std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
     ++edits;
-    if (!r || !(r->max_distance < out.fit.max_distance)) break;
+    // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
+    if (!r || !(r->max_distance <= options.tolerance || r->max_distance < kMarkedGain * out.fit.max_distance)) break;
     out.fit = *r;
     ++out.splits;
   }
