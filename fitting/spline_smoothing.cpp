@@ -27,8 +27,6 @@ constexpr int kDenseLimit = 48;
 // Solves at fixed knots after the last knot round, while the rms residual still falls by
 // more than kSettled (relative): the foot points and the spline settle together.
 constexpr int kSettleSolves = 3;
-// Newton steps for the foot of every point after a fit on a subsample.
-constexpr int kAllPointsFootSteps = 3;
 constexpr double kSettled = 0.01;
 
 // Chord-length parameters in [0, 1]; for a closed stroke the closing chord counts too
@@ -428,43 +426,7 @@ SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const Sm
 SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
   if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
   if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
-  const std::size_t m = pts.size(), used = options.max_points;
-  if (used < 4 || m <= used) return smoothPoints(pts, closed, options);
-  // An even subsample (an open stroke's ends kept), then every point's parameter from its
-  // picked neighbours' (in proportion to the chord length between them) and corrected to
-  // its foot on the spline.
-  std::vector<std::size_t> pick;
-  for (std::size_t k = 0; k < used; ++k) pick.push_back(closed ? k * m / used : k * (m - 1) / (used - 1));
-  std::vector<Vec2> sub;
-  for (std::size_t k : pick) sub.push_back(pts[k]);
-  SmoothingResult result = smoothPoints(sub, closed, options);
-  const double period = result.spline.tMax() - result.spline.tMin();
-  std::vector<double> t(m);
-  const std::size_t spans = closed ? pick.size() : pick.size() - 1;
-  for (std::size_t j = 0; j < spans; ++j) {
-    const std::size_t a = pick[j], b = j + 1 < pick.size() ? pick[j + 1] : pick[0] + m;
-    const double ta = result.parameters[j];
-    double tb = j + 1 < pick.size() ? result.parameters[j + 1] : result.parameters[0];
-    if (closed && tb < ta) tb += period;
-    double total = 0.0;
-    for (std::size_t k = a; k < b; ++k) total += (pts[(k + 1) % m] - pts[k % m]).norm();
-    double run = 0.0;
-    for (std::size_t k = a; k < b; ++k) {
-      t[k % m] = result.spline.wrap(ta + (tb - ta) * (total > 0.0 ? run / total : 0.0));
-      run += (pts[(k + 1) % m] - pts[k % m]).norm();
-    }
-  }
-  if (!closed) t[m - 1] = result.parameters.back();
-  std::vector<double> dist;
-  correctParameters(result.spline, pts, kAllPointsFootSteps, t, dist);
-  result.parameters = std::move(t);
-  result.max_error = *std::max_element(dist.begin(), dist.end());
-  result.rms_error = rmsOf(dist);
-  if (result.max_error > options.tolerance && result.report.usable())
-    result.report = {SolveStatus::kIterationLimit, result.rounds, result.max_error,
-                     "within tolerance on " + std::to_string(used) + " of " + std::to_string(m) +
-                         " points, not on all (max error " + std::to_string(result.max_error) + ")"};
-  return result;
+  return smoothPoints(pts, closed, options);
 }
 
 }  // namespace la

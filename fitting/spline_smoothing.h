@@ -33,11 +33,6 @@ struct SmoothingOptions {
   double fairness_margin = 0.9;  // use at most this fraction of the tolerance when raising w
   double noise_sigma = 0.0;      // estimated noise of the points; w is raised only while the
                                  // rms residual stays below sigma sqrt(2) (0: never raised)
-  /// Fit at most this many points (evenly spaced, an open stroke's ends kept; 0: all),
-  /// then find every point's foot on the result: a spline of a few dozen spans is pinned
-  /// down by a few hundred points. The report then says whether all points are within
-  /// the tolerance.
-  std::size_t max_points = 0;
 };
 
 struct SmoothingResult {
