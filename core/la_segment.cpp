@@ -23,7 +23,7 @@ constexpr double kSeriesMaxRatio = 0.1;
 // f ~ turning^4, below 3e-12 h as the 2-point Gauss-Legendre rule it replaces was at
 // 0.01 rad (h f/4320); it needs one series evaluation less per panel.
 constexpr double kSimpsonTurning = 0.009;
-// The inflection series (panelNearInflection) is used up to this turning from the
+// The inflection series (panelNearInflection, position) is used up to this turning from the
 // inflection point: its terms fall like turning^k / k!, below 1e-17 after ~20 terms.
 constexpr double kInflectionSeriesMaxTurning = 1.0;
 constexpr int kInflectionSeriesMaxTerms = 40;
@@ -227,7 +227,34 @@ Vec2 LaSegment::position(double s, double relative_tolerance) const {
     const double chord = (half == 0.0) ? s : 2.0 * std::sin(half) / kappa_start_;
     return start_ + chord * unitVector(theta0_ + half);
   }
-  return start_ + integratePositionAdaptive(0.0, s, relative_tolerance * length_);
+  const double abs_tol = relative_tolerance * length_;
+  if (law_ == Law::kPower && (v0_ == 0.0 || v1_ == 0.0) && s > 0.0 && s <= length_) {
+    // Next to an inflection end kappa ~ r^(-1/alpha) (r the distance from it) is
+    // singular, and adaptive quadrature bisects towards it some 20 times at 1e-14.
+    // Within kInflectionSeriesMaxTurning of the inflection the series of
+    // inflectionOffset is exact up to rounding; beyond, the tangent is smooth on the
+    // scale of the distance from the inflection and the adaptive rule needs few panels.
+    const double reach = inflectionSeriesReach();
+    if (v0_ == 0.0) {
+      const double r = std::min(s, reach);
+      const Vec2 near = start_ + inflectionOffset(r, theta0_, sign_);
+      return r < s ? near + integratePositionAdaptive(r, s, abs_tol) : near;
+    }
+    const double split = std::max(length_ - reach, 0.0);
+    if (split < s) {  // the series backwards from the end, as in panelNearInflection
+      const double heading = theta(length_) + std::numbers::pi, r = length_ - s;
+      const Vec2 delta = (r > 0.0 ? inflectionOffset(r, heading, -sign_) : Vec2::Zero()) -
+                         inflectionOffset(length_ - split, heading, -sign_);
+      return start_ + (split > 0.0 ? integratePositionAdaptive(0.0, split, abs_tol) : Vec2::Zero()) + delta;
+    }
+  }
+  return start_ + integratePositionAdaptive(0.0, s, abs_tol);
+}
+
+double LaSegment::inflectionSeriesReach() const {
+  // The turning from the inflection, kappa_ref L (r/L)^e / e (see inflectionOffset),
+  // equals kInflectionSeriesMaxTurning at r = L (e kInflectionSeriesMaxTurning / (kappa_ref L))^(1/e).
+  return length_ * std::exp(std::log(exponent_ * kInflectionSeriesMaxTurning / (kappa_ref_ * length_)) / exponent_);
 }
 
 LaSegment LaSegment::reversed() const {

@@ -10,8 +10,9 @@
 // inflection end, seed 003 section 2.2). Curvature is signed, left turn positive.
 //
 // The tangent angle theta(s) has a closed form (the integral of kappa); positions
-// are integrals of (cos theta, sin theta) by Gauss-Legendre quadrature, adaptive
-// where the integrand is singular. The closed forms are written with log1p/expm1 so
+// are integrals of (cos theta, sin theta) by adaptive Gauss-Legendre quadrature, except
+// next to an inflection end (kappa = 0, singular law), where a power series gives them
+// exactly (inflectionOffset). The closed forms are written with log1p/expm1 so
 // that near-circular segments (curvature ratio close to 1) lose no precision.
 
 #include <array>
@@ -61,6 +62,9 @@ class LaSegment {
   /// d kappa / ds; infinite at an inflection end where the law is singular (alpha < -1).
   double dkappa(double s) const;
   double theta(double s) const;
+  /// theta(s) and kappa(s) together, for the cost of about one of them (they share the
+  /// law's logarithm): for inner loops that need both.
+  void thetaKappa(double s, double& theta, double& kappa) const;
   Vec2 tangent(double s) const { return unitVector(theta(s)); }
   /// Position at arc length s, to relative_tolerance * length.
   Vec2 position(double s, double relative_tolerance = kDefaultRelativeTolerance) const;
@@ -105,8 +109,8 @@ class LaSegment {
   // no inflection end or [s0, s1] reaches too far from it for the series.
   bool panelNearInflection(double s0, double s1, Vec2& delta) const;
   Vec2 inflectionOffset(double r, double heading, double turn_sign) const;
-  // theta(s) and kappa(s) together (they share the law's logarithm).
-  void thetaKappa(double s, double& theta, double& kappa) const;
+  // The distance from the inflection end within which panelNearInflection applies.
+  double inflectionSeriesReach() const;
 
   double alpha_, length_;
   Vec2 start_;

@@ -33,6 +33,10 @@
 // 002 sec. 2.1 allows the sign change), so a piece whose end curvatures have opposite
 // signs has one inflection inside; it is stored as two LaSegments joined (G2) at the
 // inflection. The Curve therefore has 3 LaSegments, plus one per such inflection.
+// On the fast panels such a part (or a piece ending at a zero end curvature) takes its
+// curvature and angle from the distance r to the zero: kappa = kappa_far (r/l)^beta,
+// theta = theta_zero +- kappa r / (1 + beta) (l the part's length, beta = -1/alpha),
+// exact where the general closed forms would cancel, and one log and exp per node.
 // For alpha >= 0 a curvature cannot reach 0: opposite-sign or zero end curvatures are
 // infeasible, and so is a turning whose sign differs from the curvature's.
 //
@@ -41,14 +45,22 @@
 // the end tangents (handles at a third of the chord) and kappa piecewise linear in
 // s through k0, k1, k2, k3, the two conditions
 //   L * integral kappa = T   and   integral_0^1 theta(sigma) d sigma = 0 (y(L) ~ 0)
-// are linear in k1, k2 (exact for a clothoid with small deflection). When Newton from
-// there fails, the solve is repeated from the alpha = -1 (triple clothoid) solution by
-// continuation in alpha, then from a few other lengths.
+// are linear in k1, k2 (exact for a clothoid with small deflection). For alpha != -1
+// the same two conditions are then solved with the LA law of the problem in place of
+// the linear profile (2x2 Newton from the clothoid values, kappa on 8 Gauss nodes per
+// piece): for alpha = -3 or 3 the clothoid values are off by ~20% and cost Newton on
+// the fast model two to four extra iterations. When Newton from there fails, it is
+// tried from the clothoid values, then repeated from the alpha = -1 (triple clothoid)
+// solution by continuation in alpha, then from a few other lengths.
 //
 // Every result is verified: the Curve is rebuilt from its LaSegments with positions
-// by LaSegment::end (adaptive quadrature), and only if the end point and angle match
-// to the tolerance is the status kConverged. A miss after Newton on the fast panels is
-// corrected by a few steps with the verified residual and the fast Jacobian.
+// by LaSegment::end (adaptive quadrature, and the exact inflection series within 1 rad
+// of a zero-curvature end), independent of the fast panels, and only if the end point
+// and angle match to the tolerance is the status kConverged. Newton's last step is not
+// evaluated on the fast panels when the previous step's quadratic contraction predicts
+// it lands far below the target; the verification checks it instead. A miss after
+// Newton on the fast panels is corrected by a few steps with the verified residual and
+// the fast Jacobian.
 
 #include <limits>
 #include <optional>

@@ -2,16 +2,17 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <cmath>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "core/lcg.h"
 #include "core/three_point_segment.h"
-#include "fitting/chain_polish.h"
+#include "fitting/chain_fit.h"
+#include "fitting/model_selection.h"
 
 namespace la {
 namespace {
@@ -26,6 +27,15 @@ constexpr double kLcgTrim = 0.1;
 // towards which an infeasible alpha is moved.
 constexpr double kDefaultAlpha = -1.0;
 constexpr double kWidestAlpha = 0.5;
+constexpr double kPolishStartAlpha = 0.5;
+// Stage 7's fit: points it iterates on (an even subsample) and Levenberg-Marquardt steps
+// per fit. Measured on the ground-truth chains (tests/pipeline_test.cpp) and the shared
+// data: fewer points lose alpha accuracy, more steps buy little but time.
+constexpr std::size_t kFitPoints = 250;
+constexpr int kFitIterations = 8;
+// A G2 chain from stage 7 replaces one with curvature gaps unless it strays further than
+// this many times that chain's largest deviation (and the tolerance).
+constexpr double kG2Preference = 2.0;
 constexpr int kAlphaBisections = 12;
 constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
@@ -341,11 +351,33 @@ SplitPoint halvingPoint(const CubicBSpline& spline, double t0, double t1) {
   return {spline.wrap(mid), SplitKind::kTurning, spline.curvature(spline.wrap(mid))};
 }
 
+// Each point's foot on pieces spanning the spline parameters [t0, t1] (a closed spline's
+// last piece runs through the seam): the piece its parameter falls in, and where.
+std::vector<ChainFoot> feetOnSpans(const std::vector<PieceReport>& spans, const std::vector<double>& parameters,
+                                   bool periodic, double period) {
+  std::vector<ChainFoot> feet(parameters.size());
+  for (std::size_t k = 0; k < parameters.size(); ++k) {
+    for (std::size_t i = 0; i < spans.size(); ++i) {
+      const double t = (parameters[k] < spans[i].t0 && periodic) ? parameters[k] + period : parameters[k];
+      if (t >= spans[i].t0 && t <= spans[i].t1) {
+        feet[k] = {i, std::clamp((t - spans[i].t0) / (spans[i].t1 - spans[i].t0), 0.0, 1.0)};
+        break;
+      }
+    }
+  }
+  return feet;
+}
+
 struct PartFit {
   std::vector<LaSegment> segments;
   std::vector<PieceReport> reports;
   std::optional<CubicBSpline> spline;
   std::vector<SplitPoint> splits;
+  std::vector<PieceReport> spans;  // every piece of the final segmentation (segments may differ after a failed G2)
+  std::vector<ChainFoot> feet;     // of the part's points on `spans` (from their spline parameters)
+  std::vector<double> parameters;  // the points' spline parameters
+  std::vector<std::string> warnings;
+  double max_dev = NAN;            // largest distance of the part's points from `segments`, once known
   SolveReport smoothing, g2;
 };
 
@@ -355,8 +387,9 @@ namespace {
 
 // Stages 2-6 for one corner-free part.
 PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, const FitOptions& options,
-                StageTimings& timings, std::vector<std::string>& warnings) {
+                StageTimings& timings) {
   PartFit out;
+  std::vector<std::string>& warnings = out.warnings;
   out.smoothing = {SolveStatus::kConverged, 0, 0.0, "straight"};
   out.g2 = {SolveStatus::kConverged, 0, 0.0, "straight"};
   if (!part.closed && (part.points.size() < 4 || withinChord(part.points, tol))) {
@@ -374,8 +407,10 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
   // The spline's curvature feeds segmentation and alpha, so it is fitted tighter than the
   // user's tolerance where the data allow: down to their noise floor, or a fraction of
   // the tolerance for clean data.
-  so.tolerance = std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
+  so.tolerance = options.polish ? tol : std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
   so.noise_sigma = noise.sigma;
+
+
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
@@ -472,7 +507,10 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
         piece.kind = PieceKind::kInflectionEnd;
       } else {
         piece.kind = PieceKind::kThreePoint;
-        double alpha = lcg.report.usable() ? std::clamp(lcg.alpha, options.min_alpha, options.max_alpha) : kDefaultAlpha;
+        // The fit of stage 7 finds alpha from the points; it starts from the prior of its
+        // alphas, which also keeps the joint solve quick (a wild LCG slope can cost it
+        // many Newton steps).
+        double alpha = options.polish ? kPolishStartAlpha : lcg.report.usable() ? std::clamp(lcg.alpha, options.min_alpha, options.max_alpha) : kDefaultAlpha;
         Vec2 q0, q1, q2;
         chain.pieces.push_back(piece);  // controlTriangle reads only joints and angles
         if (controlTriangle(chain, i, q0, q1, q2)) {
@@ -484,7 +522,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           const auto cached = fitted_alpha.find({rep.t0, rep.t1});
           if (cached != fitted_alpha.end()) {
             alpha = cached->second;
-          } else if (members[i].size() >= kMinPointsForAlphaFit) {
+          } else if (!options.polish && members[i].size() >= kMinPointsForAlphaFit) {
             std::vector<Vec2> sample;
             const std::size_t m = members[i].size(), take = std::min(m, kAlphaPoints);
             for (std::size_t k = 0; k < take; ++k) sample.push_back(part.points[members[i][k * (m - 1) / std::max<std::size_t>(take - 1, 1)]]);
@@ -527,14 +565,6 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
       res = makeG2(chain, g2);
     }
     timings.g2_ms += msSince(t0);
-    if (std::getenv("LADBG")) {
-      std::fprintf(stderr, "pass %d n %zu g2 %s [%s] max_gap %g\n", pass, n, res.report.usable() ? "ok" : "FAIL", res.report.message.c_str(), res.max_gap);
-      for (std::size_t i = 0; i < n; ++i) {
-        const SegmentSolve sv = solvePiece(chain, i);
-        std::fprintf(stderr, "  piece %zu t[%.4f %.4f] %s/%s kind %s alpha %.3f pts %zu turn %.4f solve %s\n", i, reports[i].t0, reports[i].t1, toString(reports[i].start_kind), toString(reports[i].end_kind), toString(chain.pieces[i].kind), chain.pieces[i].alpha, members[i].size(), chain.angles[i + 1] - chain.angles[i], sv.report.usable() ? "ok" : sv.report.message.c_str());
-      }
-      for (std::size_t k = 0; k < res.gaps.size(); ++k) if (res.gaps[k] > 1e-6) std::fprintf(stderr, "  gap at eq %zu: %g\n", k, res.gaps[k]);
-    }
     // Pieces to halve: those with no LA segment (tangents not forming a convex
     // triangle, or no alpha reaching it), else those whose segment strays from the
     // points further than the tolerance (or the spline's own error there). Joints to
@@ -562,7 +592,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           halve[i] = true;
         }
       }
-    } else {
+    } else if (!options.polish) {  // (stage 7 measures and corrects the deviations itself)
       const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
       const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
       double excess = 0.0;  // largest deviation beyond what is allowed
@@ -579,6 +609,10 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
         any = best->excess > 0.0;
       }
     }
+    // With stage 7 to follow, no piece is cut here: where stages 5-6 find no G2 chain the
+    // fit starts from the spline (chainFromSpline), and its model selection adds the
+    // segments the points need (cutting here leaves slivers where the spline wiggles).
+    if (options.polish) any = false;
     if (any && pass < kMaxRefinePasses) {
       if (seg.closed && drop[n]) drop[0] = true;  // joint n of a closed chain is joint 0
       std::vector<SplitPoint> splits;
@@ -592,6 +626,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
     }
     if (any && !res.segments.empty()) warnings.push_back("some segments stay further than the tolerance from the points");
     out.g2 = res.report;
+    std::vector<PieceReport> spans = reports;  // before the fallback below drops pieces
     if (res.segments.empty()) {
       // Last resort: the pieces that have an LA segment keep it, the others become
       // straight lines between their joints. G2 (and G1 at the lines) is lost there and
@@ -620,6 +655,9 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
     out.segments = std::move(res.segments);
     out.reports = std::move(reports);
     out.splits = seg.splits;
+    out.feet = feetOnSpans(spans, smooth.parameters, smooth.spline.isPeriodic(), period);
+    out.parameters = smooth.parameters;
+    out.spans = std::move(spans);
     return out;
   }
 }
@@ -640,20 +678,244 @@ PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vec
   return out;
 }
 
-void polishPart(PartFit& fit, const Part& part, double tol, double diag, const FitOptions& options) {
-  PolishOptions po;
-  po.min_alpha = options.min_alpha;
-  po.max_alpha = options.max_alpha;
-  po.fix_start = part.starts_at_corner;
-  const PolishResult polished = polishChain(fit.segments, part.points, po);
-  if (!polished.improved) return;
-  // Kept only where it is closer to all the points (it fits a subsample) and within the
-  // tolerance, or no further outside it than before.
-  const PartDeviation before = deviationOf(fit.segments, part.points, diag);
-  const PartDeviation after = deviationOf(polished.segments, part.points, diag);
-  if (after.rms > before.rms || after.max > std::max(tol, before.max)) return;
-  fit.segments = polished.segments;
-  for (std::size_t i = 0; i < fit.segments.size(); ++i) fit.reports[i].alpha = fit.segments[i].alpha();
+// The chain stage 7 starts from where stages 5-6 found none (a piece whose tangents form
+// no control triangle, a joint no tangent angle makes G2): read off the spline in
+// intrinsic form. A piece turning against both its neighbours (between two inflections)
+// is cut at its largest curvature first (`spans` is updated). Each piece turns as the
+// spline does between its splits; a joint's curvature is 0 where the turning direction
+// changes (an inflection), else the spline's (a small value of the piece's sign where the
+// spline's has the other) to start with, then adjusted as each segment is shot towards
+// the next split point (below). G2 by construction; empty if some piece has no LA
+// segment.
+std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed) {
+  constexpr int kSteps = 16;           // per piece, for its turning and length
+  constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
+  auto measure = [&](double t0, double t1, double& turning, double& length) {
+    double prev = splineTangentAngle(spline, spline.wrap(t0));
+    Vec2 p = spline.point(spline.wrap(t0));
+    turning = length = 0.0;
+    for (int k = 1; k <= kSteps; ++k) {
+      const double t = spline.wrap(t0 + (t1 - t0) * k / kSteps);
+      const double a = splineTangentAngle(spline, t);
+      turning += wrapAngle(a - prev);
+      prev = a;
+      const Vec2 q = spline.point(t);
+      length += (q - p).norm();
+      p = q;
+    }
+  };
+  auto sign = [](double v) { return v < 0.0 ? -1.0 : 1.0; };
+  std::vector<double> turning, length;
+  for (bool again = true; again;) {
+    again = false;
+    const std::size_t n = spans.size();
+    turning.assign(n, 0.0);
+    length.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
+    for (std::size_t i = 0; i < n && n >= 3; ++i) {
+      const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
+      if (!has_before || !has_after) continue;
+      const double s = sign(turning[i]);
+      if (sign(turning[(i + n - 1) % n]) == s || sign(turning[(i + 1) % n]) == s) continue;
+      double best_t = 0.5 * (spans[i].t0 + spans[i].t1), best = 0.0;
+      for (int k = 1; k < kSteps; ++k) {
+        const double t = spans[i].t0 + (spans[i].t1 - spans[i].t0) * k / kSteps;
+        const double kappa = std::abs(spline.curvature(spline.wrap(t)));
+        if (kappa > best) best = kappa, best_t = t;
+      }
+      PieceReport second = spans[i];
+      spans[i].t1 = second.t0 = best_t;
+      spans[i].end_kind = second.start_kind = SplitKind::kExtremum;
+      spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i) + 1, second);
+      again = true;
+      break;
+    }
+  }
+  const std::size_t n = spans.size(), joints = closed ? n : n + 1;
+  std::vector<double> kappa(joints, 0.0);
+  for (std::size_t j = 0; j < joints; ++j) {
+    const bool has_before = closed || j > 0, has_after = closed || j < n;
+    const std::size_t before = (j + n - 1) % n, after = j % n;
+    if (has_before && has_after && sign(turning[before]) != sign(turning[after])) continue;  // inflection: 0
+    const std::size_t piece = has_after ? after : before;
+    const double s = sign(turning[piece]);
+    const double k = spline.curvature(spline.wrap(has_after ? spans[after].t0 : spans[before].t1));
+    const double mean = std::abs(turning[piece]) / std::max(length[piece], 1e-300);
+    kappa[j] = sign(k) == s && std::abs(k) > kSmallKappa * mean ? k : s * kSmallKappa * mean;
+  }
+  // Shoot segment by segment: each starts where the previous ended (tangent and
+  // curvature continuous), turns as the spline does between its splits, and takes the
+  // end curvature and alpha that bring its end closest to the next split point (Gauss-
+  // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
+  // then follows the spline's joints instead of drifting with its curvature errors.
+  std::vector<LaSegment> chain;
+  Vec2 start = spline.point(spline.wrap(spans.front().t0));
+  double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
+    const bool free_end = kappa[(i + 1) % joints] != 0.0;
+    const double end_sign = sign(turning[i]);
+    const Vec2 target = spline.point(spline.wrap(spans[i].t1));
+    // unknowns: y = log|kappa_end| (when not an inflection), alpha
+    double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
+    const bool zero_end = k0 == 0.0 || !free_end;
+    const double hi = zero_end ? -0.2 : 3.0;
+    double alpha = zero_end ? -1.0 : kPolishStartAlpha;
+    auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
+      const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
+      try {
+        const double unit = std::abs(LaSegment(aa, 1.0, Vec2::Zero(), 0.0, k0, k1).turning());
+        if (!(unit > 0.0)) return std::nullopt;
+        return LaSegment(aa, std::abs(turning[i]) / unit, start, theta, k0, k1);
+      } catch (const std::invalid_argument&) {
+        return std::nullopt;
+      }
+    };
+    auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
+      const auto seg = build(yy, aa);
+      if (!seg) return std::nullopt;
+      return Vec2(seg->end() - target);
+    };
+    constexpr int kShootingSteps = 8;
+    constexpr double kStep = 1e-4;
+    for (int it = 0; it < kShootingSteps; ++it) {
+      const auto r = miss(y, alpha);
+      if (!r) break;
+      Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
+      const auto ra = miss(y, alpha + kStep);
+      if (!ra) break;
+      jac.col(1) = (*ra - *r) / kStep;
+      if (free_end) {
+        const auto ry = miss(y + kStep, alpha);
+        if (!ry) break;
+        jac.col(0) = (*ry - *r) / kStep;
+      }
+      // least-squares step, damped a little, both unknowns limited in size
+      Eigen::Matrix2d a = jac.transpose() * jac;
+      a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
+      const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
+      if (!step.allFinite()) break;
+      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), -3.0, hi);
+      const auto rn = miss(ny, na);
+      if (!rn || rn->norm() >= r->norm()) break;
+      y = ny;
+      alpha = na;
+    }
+    const auto seg = build(y, alpha);
+    if (!seg) return {};
+    chain.push_back(*seg);
+    start = chain.back().end();
+    theta = chain.back().theta(chain.back().length());
+  }
+  return chain;
+}
+
+// The piece reports of a chain stage 7 made (its segments need not be the segmentation's
+// pieces any more): each segment's span of spline parameters (those of the points whose
+// feet are on it), the kind of its ends (an inflection where the curvature is 0, an
+// extremum where |kappa| turns, else a cut by turning), its kind, alpha, and the LCG of
+// the smoothed stroke over it.
+std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const std::vector<ChainFoot>& feet,
+                                   const std::vector<double>& parameters, const CubicBSpline& spline, bool closed) {
+  const std::size_t n = segments.size();
+  const double period = spline.tMax() - spline.tMin();
+  std::vector<PieceReport> out(n);
+  std::vector<bool> seen(n, false);
+  for (std::size_t k = 0; k < feet.size() && k < parameters.size(); ++k) {
+    PieceReport& r = out[feet[k].segment];
+    double t = parameters[k];
+    if (!seen[feet[k].segment]) {
+      r.t0 = r.t1 = t;
+      seen[feet[k].segment] = true;
+      continue;
+    }
+    if (closed && t < r.t1) t += period;  // through the seam
+    r.t1 = t;
+  }
+  auto trend = [](const LaSegment& s) { return std::abs(s.kappaEnd()) > std::abs(s.kappaStart()); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const LaSegment& seg = segments[i];
+    PieceReport& r = out[i];
+    if (!seen[i]) r.t0 = r.t1 = i > 0 ? out[i - 1].t1 : spline.tMin();
+    auto kindAt = [&](std::size_t joint) {
+      if (!closed && (joint == 0 || joint == n)) return SplitKind::kEnd;
+      const LaSegment& before = segments[(joint + n - 1) % n];
+      const LaSegment& after = segments[joint % n];
+      if (after.kappaStart() == 0.0) return SplitKind::kInflection;
+      return trend(before) != trend(after) ? SplitKind::kExtremum : SplitKind::kTurning;
+    };
+    r.start_kind = kindAt(i);
+    r.end_kind = kindAt(i + 1);
+    r.kind = seg.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+             : seg.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                     : PieceKind::kThreePoint;
+    r.alpha = seg.alpha();
+    if (r.t1 > r.t0) {
+      const LcgFit lcg = lcgOfPiece(spline, r.t0, r.t1);
+      r.lcg_alpha = lcg.alpha;
+      r.lcg_r2 = lcg.r2;
+    } else {
+      r.lcg_alpha = r.lcg_r2 = NAN;
+    }
+  }
+  return out;
+}
+
+// Stage 7 on one part: fits its chain to the points and selects its segments
+// (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
+// the spline. The result replaces the part's chain where it is within the tolerance or
+// closer to the points than that chain; fit.max_dev is then known.
+void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
+                const FitOptions& options) {
+  SelectionOptions so;
+  so.tolerance = tol;
+  ChainFitOptions& co = so.fit;
+  co.min_alpha = options.min_alpha;
+  co.max_alpha = options.max_alpha;
+  co.closed = part.closed;
+  co.fix_start = part.starts_at_corner;
+  co.fix_end = ends_at_corner;
+  co.max_points = kFitPoints;
+  co.max_iterations = kFitIterations;
+  co.noise = noise;
+  if (!fit.spline) return;  // a straight part
+  std::vector<LaSegment> start = fit.segments;
+  bool straight = false;
+  for (const LaSegment& s : start) straight |= !std::isfinite(s.alpha()) && s.kappaStart() == 0.0;
+  std::vector<ChainFoot> feet = fit.feet;
+  if (!fit.g2.usable() || straight || start.size() != fit.spans.size()) {
+    std::vector<PieceReport> spans = fit.spans;
+    start = chainFromSpline(*fit.spline, spans, part.closed);
+    feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
+  }
+  if (start.empty()) return;
+  const SelectionResult selected = selectChain(start, part.points, feet, so);
+  const ChainFitResult& polished = selected.fit;
+  if (polished.report.status == SolveStatus::kBadInput) return;
+  std::vector<LaSegment> segments = polished.segments;
+  if (co.closed || co.fix_end) {
+    G2Options g2;
+    g2.method = options.g2;
+    g2.threshold = options.g2_threshold;
+    g2.diagonal = diag;
+    segments = snapToJoints(segments, co.closed, part.points.back(), g2);
+    if (segments.empty()) return;
+  }
+  if (polished.max_distance > tol) {
+    // Outside the tolerance: kept if closer to the points than the chain it started from,
+    // or, where that chain has curvature gaps, if not much further (G2 is the promise).
+    fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
+    const double allowed = fit.g2.usable() ? fit.max_dev : std::max(tol, kG2Preference * fit.max_dev);
+    if (polished.max_distance >= allowed) return;
+  }
+  fit.max_dev = polished.max_distance;
+  fit.warnings.clear();
+  if (polished.max_distance > tol) fit.warnings.push_back("some segments stay further than the tolerance from the points");
+  fit.segments = segments;
+  fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
+  fit.reports = reportsOf(fit.segments, polished.feet, fit.parameters, *fit.spline, part.closed);
+  for (std::size_t i = 0; i < fit.reports.size() && i < polished.alpha_standard_error.size(); ++i)
+    fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
 }
 
 }  // namespace
@@ -678,14 +940,30 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   for (std::size_t k = 0; k < parts.size(); ++k) {
-    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings, r.warnings);
-    // An open stroke's last part (its end is free; a part that ends at a corner must keep
-    // it) is polished, and keeps the polish where it stays within the tolerance.
-    if (options.polish && fit.g2.usable() && !r.cleaned.closed && k + 1 == parts.size()) {
-      const auto tp = Clock::now();
-      polishPart(fit, parts[k], r.tolerance, diag, options);
-      r.timings.polish_ms += msSince(tp);
+    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings);
+    if (options.polish && options.g2 != G2Method::kOff) {  // (stage 7 makes the chain G2)
+      const bool ends_at_corner = r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size();
+      auto polish = [&](PartFit& f) {
+        const auto tp = Clock::now();
+        polishPart(f, parts[k], ends_at_corner, r.tolerance, noise.sigma, diag, options);
+        r.timings.polish_ms += msSince(tp);
+      };
+      polish(fit);
+      // Where that leaves a gap or a miss, stages 2-6 as the paper has them (cutting pieces
+      // that stray or have no LA segment) give a chain close to the points, polished in
+      // turn; the better of the two stays.
+      if (!fit.g2.usable() || !(fit.max_dev <= r.tolerance)) {
+        FitOptions plain = options;
+        plain.polish = false;
+        PartFit other = fitPart(parts[k], r.tolerance, noise, diag, plain, r.timings);
+        polish(other);
+        if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, parts[k].points, diag).max;
+        if (std::isnan(other.max_dev)) other.max_dev = deviationOf(other.segments, parts[k].points, diag).max;
+        const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
+        if (better) fit = std::move(other);
+      }
     }
+    r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);

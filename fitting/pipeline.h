@@ -9,10 +9,19 @@
 //   4 alpha per piece  LCG regression (inflection pieces solve alpha)  core/lcg.h
 //   5 LA segment per piece from its control triangle                 fitting/chain.h
 //   6 makeG2           rotate joint tangents until curvature is continuous  fitting/g2_joints.h
-//   7 polishChain      least squares on the whole G2 chain (open parts) fitting/chain_polish.h
+//   7 selectChain      the whole G2 chain fitted to the points by least  fitting/model_selection.h,
+//                      squares, segments added, collapsed or merged as   fitting/chain_fit.h
+//                      the points need (ours; on by default)
 //   8 quality figures  fitting/quality.h
 // A stroke with deliberate corners is fitted piecewise between them; the segment after
 // a corner carries corner = true.
+//
+// With stage 7 on, stages 2-6 only prepare its start: the spline is fitted to the
+// tolerance (not tighter), alphas start at the fit's prior, and no piece is cut where its
+// segment strays (the fit closes such misses, and cuts leave slivers). Where stage 6 finds
+// no G2 chain the fit starts from the spline itself; where its result still misses the
+// tolerance or G2, stages 2-6 as the paper has them (cutting what strays) give a second
+// start, and the better result stays (G2 first, then the deviation).
 
 #include <optional>
 #include <string>
@@ -38,10 +47,11 @@ struct FitOptions {
   double g2_threshold = 1e-6;
   /// Alpha from the LCG is kept inside this range (a noisy LCG can be steep).
   double min_alpha = -3.0, max_alpha = 3.0;
-  /// Stage 7: fit the G2 chain of an open part to the points by least squares
-  /// (fitting/chain_polish.h). Opt-in: closer to the points and truer alphas, but its
-  /// numeric Jacobian costs ~20 ms on a 1,000-point stroke (6x the rest of the fit).
-  bool polish = false;
+  /// Stage 7 (fitting/model_selection.h): fit each part's G2 chain to its points by
+  /// least squares and choose its segments. Off: the paper's pipeline alone (stages 1-6;
+  /// the app's live preview, which must keep up with the pen). Ignored with g2 = kOff
+  /// (stage 7's chains are G2 by construction).
+  bool polish = true;
 };
 
 /// One piece of the segmentation and how its LA segment was made.
@@ -53,6 +63,9 @@ struct PieceReport {
   double lcg_r2 = 0.0;
   double alpha = 0.0;         // alpha used (moved into the feasible range if needed)
   bool alpha_moved = false;
+  /// Standard error of the fitted alpha (stage 7, fitting/chain_fit.h): how well the
+  /// points determine it; infinite when stage 7 did not run.
+  double alpha_standard_error = INFINITY;
   int part = 0;               // which corner-to-corner part it belongs to
   int spline = -1;            // index into FitResult::splines of that part's spline (-1: a straight part)
 };

@@ -11,7 +11,10 @@ namespace {
 // Cell size of the edge grid, in mean polyline edge lengths: a cell holds about this
 // many edges of a curve passing through it once, and a point within the tolerance of
 // the curve finds its foot in the first ring or two of cells.
-constexpr double kEdgesPerCell = 16.0;
+constexpr double kEdgesPerCell = 4.0;
+// Edges either side of the previous point's nearest edge that give each point its first
+// bound (consecutive points are about one polyline edge apart).
+constexpr int kNeighbourEdges = 3;
 // Cells per axis at most (memory stays below a few MB for any curve).
 constexpr int kMaxCellsPerAxis = 512;
 
@@ -25,6 +28,13 @@ class EdgeGrid {
  public:
   explicit EdgeGrid(const std::vector<Vec2>& poly) : poly_(poly) {
     const int edges = static_cast<int>(poly.size()) - 1;
+    direction_.resize(edges);
+    inverse_length2_.resize(edges);
+    for (int e = 0; e < edges; ++e) {
+      direction_[e] = poly[e + 1] - poly[e];
+      const double l2 = direction_[e].squaredNorm();
+      inverse_length2_[e] = l2 > 0.0 ? 1.0 / l2 : 0.0;
+    }
     lo_ = hi_ = poly.front();
     double length = 0.0;
     for (int e = 0; e < edges; ++e) length += (poly[e + 1] - poly[e]).norm();
@@ -47,21 +57,33 @@ class EdgeGrid {
     for (int e = 0; e < edges; ++e) cover(e, [&](std::size_t c) { edges_[fill[c]++] = e; });
   }
 
-  double distance(const Vec2& p) const {
+  // Squared distance from p to edge e (a point edge: to its start).
+  double distance2(const Vec2& p, int e) const {
+    const Vec2 ap = p - poly_[e];
+    const double t = std::clamp(ap.dot(direction_[e]) * inverse_length2_[e], 0.0, 1.0);
+    return (ap - t * direction_[e]).squaredNorm();
+  }
+
+  // Distance from p to the nearest edge, which is written to `edge`. `bound` is the
+  // distance to some edge already known (`edge` that one), which lets the search stop
+  // early: after each ring of cells, once nothing unsearched can be closer.
+  double distance(const Vec2& p, double bound, int& edge) const {
     // The point's cell (possibly outside the grid) and its Chebyshev distance to the grid.
     constexpr double kFar = 1e9;  // cells; keeps the integer arithmetic in range
-    const int px = static_cast<int>(std::clamp(std::floor((p.x() - lo_.x()) / cell_), -kFar, kFar));
-    const int py = static_cast<int>(std::clamp(std::floor((p.y() - lo_.y()) / cell_), -kFar, kFar));
+    const double fx = (p.x() - lo_.x()) / cell_, fy = (p.y() - lo_.y()) / cell_;
+    const int px = static_cast<int>(std::clamp(std::floor(fx), -kFar, kFar));
+    const int py = static_cast<int>(std::clamp(std::floor(fy), -kFar, kFar));
     const int outside = std::max({0, -px, px - (nx_ - 1), -py, py - (ny_ - 1)});
-    double best = INFINITY;
+    double best2 = bound * bound;
     auto visit = [&](int x, int y) {
       const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
-      for (int k = start_[c]; k < start_[c + 1]; ++k)
-        best = std::min(best, distanceToSegment(p, poly_[edges_[k]], poly_[edges_[k] + 1]));
+      for (int k = start_[c]; k < start_[c + 1]; ++k) {
+        const double d2 = distance2(p, edges_[k]);
+        if (d2 < best2) best2 = d2, edge = edges_[k];
+      }
     };
     for (int r = outside;; ++r) {
-      // Ring r: the cells at Chebyshev distance r (those inside the grid); the cells of
-      // ring r+1 and beyond are at least r cells away from p.
+      // Ring r: the cells at Chebyshev distance r (those inside the grid).
       const int x0 = std::max(0, px - r), x1 = std::min(nx_ - 1, px + r);
       const int y0 = std::max(0, py - r + 1), y1 = std::min(ny_ - 1, py + r - 1);
       for (int y : {py - r, py + r}) {
@@ -73,7 +95,9 @@ class EdgeGrid {
         if (r == 0 || x < 0 || x >= nx_) continue;
         for (int y = y0; y <= y1; ++y) visit(x, y);
       }
-      if (best <= r * cell_ || r > outside + nx_ + ny_) return best;
+      // Everything not searched lies outside the square of rings 0..r around p's cell.
+      const double margin = cell_ * std::min({fx - (px - r), px + r + 1 - fx, fy - (py - r), py + r + 1 - fy});
+      if (best2 <= margin * margin || r > outside + nx_ + ny_) return std::sqrt(best2);
     }
   }
 
@@ -86,6 +110,8 @@ class EdgeGrid {
   double cell_ = 1.0;
   int nx_ = 1, ny_ = 1;
   std::vector<int> start_, edges_;
+  std::vector<Vec2> direction_;
+  std::vector<double> inverse_length2_;
 };
 
 }  // namespace
@@ -109,7 +135,19 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     return out;
   }
   const EdgeGrid grid(poly);
-  for (std::size_t i = 0; i < points.size(); ++i) out[i] = grid.distance(points[i]);
+  // Points come in order along the stroke: the edges next to the previous point's nearest
+  // give a first bound, which the grid search then confirms or beats.
+  const int edges = static_cast<int>(poly.size()) - 1;
+  int edge = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double bound2 = INFINITY;
+    const int from = std::max(0, edge - kNeighbourEdges), to = std::min(edges - 1, edge + kNeighbourEdges);
+    for (int e = from; e <= to; ++e) {
+      const double d2 = grid.distance2(points[i], e);
+      if (d2 < bound2) bound2 = d2, edge = e;
+    }
+    out[i] = grid.distance(points[i], std::sqrt(bound2), edge);
+  }
   return out;
 }
 

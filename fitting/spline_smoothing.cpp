@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,10 @@ constexpr int kMinPointsToSplitShared = 2;
 // Up to this many control points the normal equations are solved dense (faster than
 // the sparse factorization's set-up); above, sparse LDLT.
 constexpr int kDenseLimit = 48;
+// Solves at fixed knots after the last knot round, while the rms residual still falls by
+// more than kSettled (relative): the foot points and the spline settle together.
+constexpr int kSettleSolves = 3;
+constexpr double kSettled = 0.01;
 
 // Chord-length parameters in [0, 1]; for a closed stroke the closing chord counts too
 // and 1 is the start again.
@@ -44,28 +49,99 @@ int controlCount(const std::vector<double>& breaks, bool closed) {
   return closed ? spans : spans + 3;
 }
 
-// Solves the penalized least squares for fixed breaks and parameters.
-bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
-                  bool closed, double weight, std::vector<Vec2>& control) {
-  const int n = controlCount(breaks, closed);
-  // A template spline (zero control) gives the knot vector and basis functions.
-  const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(pts.size() * 16 + breaks.size() * 16);
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
-  double ders[4][4];
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const int sp = shape.span(t[i]);
-    shape.basis(sp, shape.wrap(t[i]), ders, 0);
-    for (int a = 0; a < 4; ++a) {
-      const int ia = shape.controlIndex(sp - 3 + a);
-      rhs(ia, 0) += ders[0][a] * pts[i].x();
-      rhs(ia, 1) += ders[0][a] * pts[i].y();
-      for (int b = 0; b < 4; ++b) triplets.emplace_back(ia, shape.controlIndex(sp - 3 + b), ders[0][a] * ders[0][b]);
+// The four nonzero basis functions of every span as cubics in (t - knot_i), and a span
+// lookup that walks from the previous point's span: points come in order along the
+// stroke, so evaluating the basis at each costs a few multiplications instead of de
+// Boor's recursion and a binary search (the hot loop of every solve).
+class BasisTable {
+ public:
+  explicit BasisTable(const CubicBSpline& shape) : shape_(shape) {
+    const auto& knots = shape.knots();
+    const int first = CubicBSpline::kDegree, last = static_cast<int>(shape.control().size()) - 1;
+    coefficients_.resize(last + 1);
+    double ders[4][4];
+    for (int i = first; i <= last; ++i) {
+      if (!(knots[i + 1] > knots[i])) continue;
+      shape.basis(i, knots[i], ders, 3);
+      for (int a = 0; a < 4; ++a)
+        coefficients_[i][a] = {ders[0][a], ders[1][a], ders[2][a] / 2.0, ders[3][a] / 6.0};
     }
   }
-  // Jerk energy: C''' is constant on each span, so integral = sum over spans of width * |C'''|^2.
-  const double scale = weight * static_cast<double>(pts.size());
+  // Span of t (wrapped) starting from `hint`, and the four basis values there.
+  int evaluate(double t, int hint, double value[4]) const {
+    t = shape_.wrap(t);
+    const auto& knots = shape_.knots();
+    const int first = CubicBSpline::kDegree, last = static_cast<int>(coefficients_.size()) - 1;
+    int i = std::clamp(hint, first, last);
+    if (!(knots[i] <= t && (t < knots[i + 1] || i == last))) {
+      while (i < last && t >= knots[i + 1]) ++i;
+      while (i > first && t < knots[i]) --i;
+    }
+    const double u = t - knots[i];
+    for (int a = 0; a < 4; ++a) {
+      const auto& c = coefficients_[i][a];
+      value[a] = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
+    }
+    return i;
+  }
+
+ private:
+  const CubicBSpline& shape_;
+  std::vector<std::array<std::array<double, 4>, 4>> coefficients_;
+};
+
+// The data part of the normal equations, B^T B and B^T X, for points at parameters t:
+// each point touches only its span's four control points, so the products are summed
+// per span (one triangle) and handed to add(row, column, value) and rhs once per span.
+// Each point's control indices and basis values are kept if asked for.
+template <typename Add>
+void accumulateData(const CubicBSpline& shape, const std::vector<Vec2>& pts, const std::vector<double>& t,
+                    Eigen::MatrixXd& rhs, Add&& add, std::vector<std::array<int, 4>>* indices = nullptr,
+                    std::vector<std::array<double, 4>>* values = nullptr) {
+  const BasisTable table(shape);
+  double block[4][4] = {}, bx[4] = {}, by[4] = {};
+  int open_span = -1;
+  auto flush = [&] {
+    if (open_span < 0) return;
+    for (int a = 0; a < 4; ++a) {
+      const int ia = shape.controlIndex(open_span - 3 + a);
+      rhs(ia, 0) += bx[a];
+      rhs(ia, 1) += by[a];
+      bx[a] = by[a] = 0.0;
+      for (int b = a; b < 4; ++b) {
+        const int ib = shape.controlIndex(open_span - 3 + b);
+        add(ia, ib, block[a][b]);
+        if (b != a) add(ib, ia, block[a][b]);
+        block[a][b] = 0.0;
+      }
+    }
+  };
+  if (indices) indices->resize(pts.size());
+  if (values) values->resize(pts.size());
+  int sp = CubicBSpline::kDegree;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    double v[4];
+    sp = table.evaluate(t[i], sp, v);
+    if (sp != open_span) {
+      flush();
+      open_span = sp;
+    }
+    for (int a = 0; a < 4; ++a) {
+      bx[a] += v[a] * pts[i].x();
+      by[a] += v[a] * pts[i].y();
+      for (int b = a; b < 4; ++b) block[a][b] += v[a] * v[b];
+      if (indices) (*indices)[i][a] = shape.controlIndex(sp - 3 + a);
+      if (values) (*values)[i][a] = v[a];
+    }
+  }
+  flush();
+}
+
+// The jerk Gram matrix (times scale): C''' is constant on each span, so the integral of
+// |C'''|^2 is the sum over spans of width * |C'''|^2.
+template <typename Add>
+void accumulateJerk(const CubicBSpline& shape, const std::vector<double>& breaks, double scale, Add&& add) {
+  double ders[4][4];
   for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
     const double width = breaks[j + 1] - breaks[j];
     const double mid = 0.5 * (breaks[j] + breaks[j + 1]);
@@ -73,17 +149,40 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
     shape.basis(sp, mid, ders);
     for (int a = 0; a < 4; ++a)
       for (int b = 0; b < 4; ++b)
-        triplets.emplace_back(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b),
-                              scale * width * ders[3][a] * ders[3][b]);
+        add(shape.controlIndex(sp - 3 + a), shape.controlIndex(sp - 3 + b), scale * width * ders[3][a] * ders[3][b]);
   }
+}
+
+std::vector<Vec2> controlOf(const Eigen::MatrixXd& x) {
+  std::vector<Vec2> control(x.rows());
+  for (Eigen::Index k = 0; k < x.rows(); ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+  return control;
+}
+
+// Solves the penalized least squares for fixed breaks and parameters.
+bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
+                  bool closed, double weight, std::vector<Vec2>& control) {
+  const int n = controlCount(breaks, closed);
+  // A template spline (zero control) gives the knot vector and basis functions.
+  const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(n, 2);
+  const double scale = weight * static_cast<double>(pts.size());
   Eigen::MatrixXd x;
+  // The normal equations are banded (the periodic case wraps around): dense when small,
+  // else sparse.
   if (n <= kDenseLimit) {
-    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
-    for (const auto& e : triplets) dense(e.row(), e.col()) += e.value();
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(dense);
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    auto add = [&](int r, int c, double v) { a(r, c) += v; };
+    accumulateData(shape, pts, t, rhs, add);
+    accumulateJerk(shape, breaks, scale, add);
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
     if (ldlt.info() != Eigen::Success) return false;
     x = ldlt.solve(rhs);
   } else {
+    std::vector<Eigen::Triplet<double>> triplets;
+    auto add = [&](int r, int c, double v) { triplets.emplace_back(r, c, v); };
+    accumulateData(shape, pts, t, rhs, add);
+    accumulateJerk(shape, breaks, scale, add);
     Eigen::SparseMatrix<double> a(n, n);
     a.setFromTriplets(triplets.begin(), triplets.end());
     const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(a);
@@ -91,10 +190,44 @@ bool solveControl(const std::vector<Vec2>& pts, const std::vector<double>& t, co
     x = ldlt.solve(rhs);
   }
   if (!x.allFinite()) return false;
-  control.resize(n);
-  for (int k = 0; k < n; ++k) control[k] = Vec2(x(k, 0), x(k, 1));
+  control = controlOf(x);
   return true;
 }
+
+// The normal equations at fixed parameters t, kept apart: the data part B^T B and B^T X,
+// the jerk Gram matrix, and each point's four basis values. The fairness search solves
+// them for many weights without touching the points again (dense systems only).
+struct FixedParameterSystem {
+  Eigen::MatrixXd data, gram, rhs;
+  std::vector<std::array<int, 4>> index;
+  std::vector<std::array<double, 4>> basis;
+
+  FixedParameterSystem(const std::vector<Vec2>& pts, const std::vector<double>& t, const std::vector<double>& breaks,
+                       bool closed) {
+    const int n = controlCount(breaks, closed);
+    const CubicBSpline shape = makeSpline(breaks, std::vector<Vec2>(n, Vec2::Zero()), closed);
+    data = gram = Eigen::MatrixXd::Zero(n, n);
+    rhs = Eigen::MatrixXd::Zero(n, 2);
+    accumulateData(shape, pts, t, rhs, [&](int r, int c, double v) { data(r, c) += v; }, &index, &basis);
+    accumulateJerk(shape, breaks, 1.0, [&](int r, int c, double v) { gram(r, c) += v; });
+  }
+  // Control points for jerk weight w (the same scaling as solveControl) and the distances
+  // of the points from their (unmoved) parameters on that spline; false if singular.
+  bool solve(double weight, const std::vector<Vec2>& pts, std::vector<Vec2>& control, std::vector<double>& dist) const {
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(data + weight * static_cast<double>(pts.size()) * gram);
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::MatrixXd x = ldlt.solve(rhs);
+    if (!x.allFinite()) return false;
+    control = controlOf(x);
+    dist.resize(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      Vec2 c = Vec2::Zero();
+      for (int a = 0; a < 4; ++a) c += basis[i][a] * control[index[i][a]];
+      dist[i] = (c - pts[i]).norm();
+    }
+    return true;
+  }
+};
 
 // Newton steps towards the foot point of each X_i; returns per-point distances. The
 // spline is evaluated from its per-span polynomials (Horner), the hot loop of smoothing.
@@ -104,9 +237,12 @@ void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts,
   std::vector<std::array<Vec2, 4>> poly(last - first + 1);
   for (int i = first; i <= last; ++i) poly[i - first] = spline.spanPolynomial(i);
   const auto& knots = spline.knots();
+  int span = first;  // walks along with the points (they come in order)
   auto eval = [&](double ti, Vec2& c0, Vec2& c1, Vec2& c2) {
     ti = spline.wrap(ti);
-    const int i = spline.span(ti);
+    while (span < last && ti >= knots[span + 1]) ++span;
+    while (span > first && ti < knots[span]) --span;
+    const int i = span;
     const double u = ti - knots[i];
     const auto& c = poly[i - first];
     c0 = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
@@ -154,9 +290,9 @@ bool attempt(const std::vector<Vec2>& pts, const std::vector<double>& breaks, bo
 
 }  // namespace
 
-SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
-  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
-  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
+namespace {
+
+SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
   const int min_spans = closed ? 4 : 1;
   std::vector<double> breaks;
   const int spans0 = std::max(min_spans, options.initial_spans);
@@ -213,24 +349,48 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
     breaks = std::move(next);
   }
   result.rounds = round + 1;
+  // The last solve used the parameters from before its own foot-point correction: solve
+  // again until the residuals settle (the knots stay).
+  for (int k = 0; k < kSettleSolves && current.max_error <= options.tolerance; ++k) {
+    Attempt again = current;
+    if (!attempt(pts, breaks, closed, weight, options.foot_point_steps, again)) break;
+    const double before = rmsOf(current.dist), after = rmsOf(again.dist);
+    if (again.max_error > options.tolerance) break;
+    current = std::move(again);
+    if (before - after < kSettled * before) break;
+  }
 
   // Raise the fairness weight as far as the tolerance allows and the noise justifies:
   // the residuals may grow to the noise level (Morozov's discrepancy principle: rms
   // distance of 2D noise sigma is sigma sqrt(2)), never past the tolerance margin.
+  const double limit = options.fairness_margin * options.tolerance;
+  const double rms_limit = std::sqrt(2.0) * options.noise_sigma;
+  auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
   if (current.max_error <= options.tolerance && options.fairness_steps > 0 && options.noise_sigma > 0.0) {
     double lo = std::log(weight), hi = std::log(options.max_fairness);
-    const double limit = options.fairness_margin * options.tolerance;
-    const double rms_limit = std::sqrt(2.0) * options.noise_sigma;
-    auto acceptable = [&](const Attempt& a) { return a.max_error <= limit && rmsOf(a.dist) <= rms_limit; };
-    Attempt probe = current;
-    if (attempt(pts, breaks, closed, options.max_fairness, options.foot_point_steps, probe) && acceptable(probe)) {
+    const bool dense = controlCount(breaks, closed) <= kDenseLimit;
+    // A trial weight: at the parameters held (distances from them are upper bounds of the
+    // foot distances, so a weight found acceptable is), cheap for a dense system; else a
+    // full attempt with its own foot correction.
+    std::optional<FixedParameterSystem> fixed;
+    if (dense) fixed.emplace(pts, current.t, breaks, closed);
+    auto trialAt = [&](double w, Attempt& a) {
+      a = current;
+      if (!fixed) return attempt(pts, breaks, closed, w, options.foot_point_steps, a);
+      if (!fixed->solve(w, pts, a.control, a.dist)) return false;
+      a.max_error = *std::max_element(a.dist.begin(), a.dist.end());
+      return true;
+    };
+    const double start_weight = weight;
+    Attempt probe;
+    if (trialAt(options.max_fairness, probe) && acceptable(probe)) {
       current = probe;
       weight = options.max_fairness;
     } else {
       for (int k = 0; k < options.fairness_steps; ++k) {
         const double mid = 0.5 * (lo + hi);
-        Attempt trial = current;
-        if (attempt(pts, breaks, closed, std::exp(mid), options.foot_point_steps, trial) && acceptable(trial)) {
+        Attempt trial;
+        if (trialAt(std::exp(mid), trial) && acceptable(trial)) {
           current = std::move(trial);
           lo = mid;
           weight = std::exp(mid);
@@ -238,6 +398,13 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
           hi = mid;
         }
       }
+    }
+    // The chosen weight once more with the foot points corrected.
+    if (dense && weight != start_weight) {
+      Attempt final_fit = current;
+      if (attempt(pts, breaks, closed, weight, options.foot_point_steps, final_fit) &&
+          final_fit.max_error <= options.tolerance)
+        current = std::move(final_fit);
     }
   }
 
@@ -252,6 +419,14 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
                       : "tolerance not reached with " + std::to_string(breaks.size() - 1) + " spans (max error " +
                             std::to_string(current.max_error) + ")"};
   return result;
+}
+
+}  // namespace
+
+SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
+  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
+  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
+  return smoothPoints(pts, closed, options);
 }
 
 }  // namespace la

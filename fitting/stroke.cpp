@@ -83,6 +83,11 @@ constexpr double kWideRatio = 1.75;
 /// Over half the window a corner keeps its turn, an arc half of it; used where three
 /// windows do not fit. Hand-drawn corners keep 0.7-1.3 of it.
 constexpr double kSharpRatio = 0.7;
+/// A corner's leg is straight if its points bulge from its chord by at most this fraction
+/// of the chord on average (an arc turning 55 degrees bulges 0.08; noise averages out).
+constexpr double kLegStraightness = 0.08;
+/// Fewer points between a leg's ends cannot tell a bulge from noise: not straight.
+constexpr std::ptrdiff_t kMinLegPoints = 3;
 /// A hook is nearly straight: no point of it is farther than this fraction of its chord
 /// from the chord (a circular arc turning 90 degrees has 0.21, one turning 60 degrees 0.13).
 constexpr double kHookStraightness = 0.15;
@@ -291,6 +296,20 @@ class Polyline {
   double m_length = 0.0;
 };
 
+/// Whether the legs of a window (from its ends to its centre i) are straight: the points
+/// between bulge from the chord by at most kLegStraightness of its length on average
+/// (signed, so that noise averages out and an arc's bulge does not).
+bool straightLegs(const Polyline& line, std::ptrdiff_t i, const Polyline::Turn& turn) {
+  auto straight = [&](std::ptrdiff_t from, std::ptrdiff_t to) {
+    const Vec2 chord = line.at(to) - line.at(from);
+    const double length = chord.norm();
+    double bulge = 0.0;
+    for (std::ptrdiff_t j = from + 1; j < to; ++j) bulge += cross(chord, line.at(j) - line.at(from)) / length;
+    return to - from - 1 >= kMinLegPoints && std::abs(bulge) / static_cast<double>(to - from - 1) <= kLegStraightness * length;
+  };
+  return straight(turn.a, i) && straight(i, turn.b);
+}
+
 /// Deliberate corners: turn over the window above corner_min_angle, sharp, then
 /// non-maximum suppression (strongest first) and each placed on the point farthest from
 /// the chord (segment) across its window.
@@ -312,7 +331,12 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
     if (!full || full->angle <= options.corner_min_angle) continue;
     const auto half = line.turn(i, 0.5 * w, 1, true);
     const auto wide = line.wideTurn(i, w, kMinSideSamples);
-    const bool sharp = wide ? *wide <= kWideRatio * full->angle : (half && half->angle >= kSharpRatio * full->angle);
+    // Two corners closer than two windows (the short edge at a glyph's stem end) each
+    // see the other in their wide turn: there the half-window test decides, if both
+    // legs are straight (a small loop inside the window has no straight legs).
+    const bool keeps_half = half && half->angle >= kSharpRatio * full->angle;
+    const bool sharp = wide ? *wide <= kWideRatio * full->angle || (keeps_half && straightLegs(line, i, *full))
+                            : keeps_half;
     if (!sharp) continue;
     candidates.push_back({i, *full});
   }

@@ -24,6 +24,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/quadrature.h"
+
 namespace la {
 namespace {
 
@@ -158,6 +160,26 @@ Vec2 clothoidLocal(double k0, double a, double s) {
   const std::complex<long double> z =
       std::polar(1.0L, phase) * std::complex<long double>(dc, ds) * len;
   return {double(z.real()), double(z.imag())};
+}
+
+// Position on a segment with an inflection end (kappa = 0 at s = 0 or s = L), without
+// the inflection series that LaSegment uses there: adaptive Gauss-Legendre
+// (core/quadrature.h) of the closed-form tangent in w, with t = c + d w^4 measured from
+// the inflection c. The substitution turns the r^(-1/alpha) law into a mild w^(-4/alpha)
+// and theta into w^(4 - 4/alpha), so the quadrature reaches 1e-15 L with few panels.
+Vec2 inflectionReference(const LaSegment& seg, double s) {
+  auto from = [&](double c, double d) {  // integral of the tangent from c to c + d
+    auto f = [&](double w) -> Vec2 {
+      const double w3 = w * w * w;
+      return (4.0 * d * w3) * seg.tangent(c + d * w3 * w);
+    };
+    return integrateAdaptive(f, 0.0, 1.0, 1e-15 * seg.length()).value;
+  };
+  if (s == 0.0) return seg.start();
+  const double length = seg.length();
+  if (seg.kappaStart() == 0.0) return seg.start() + from(0.0, s);
+  // integral_0^s = integral_0^L - integral_s^L, both from the inflection at L
+  return seg.start() - from(length, -length) + (s < length ? from(length, s - length) : Vec2::Zero());
 }
 
 // Circle involute x = a(cos t + t sin t), y = a(sin t - t cos t): tangent angle t,
@@ -548,7 +570,7 @@ TEST(LaSegmentTest, SamplesAgreeWithPointEvaluation) {
 TEST(LaSegmentTest, SamplesNextToAnInflectionEndAgreeWithPointEvaluation) {
   // Next to a zero-curvature end the sampler's panels come from the inflection power
   // series (panelNearInflection), further on from the panel series. Truth:
-  // position(s, 1e-14), adaptive quadrature from the start. Both ends, both turning
+  // inflectionReference (quadrature, no series). Both ends, both turning
   // directions, alphas from nearly 0 to -8, dense and sparse sampling; every sample
   // within 1e-12 of the length (the sampler's own target is 1e-10).
   constexpr double kPosRelTol = 1e-12;
@@ -569,7 +591,7 @@ TEST(LaSegmentTest, SamplesNextToAnInflectionEndAgreeWithPointEvaluation) {
       for (int i = 0; i < n; ++i) {
         // the first and last 40 samples (the inflection panels) and every 37th
         if (i >= 40 && i < n - 40 && i % 37 != 0) continue;
-        const double deviation = (samples.point[i] - seg.position(samples.s[i], 1e-14)).norm();
+        const double deviation = (samples.point[i] - inflectionReference(seg, samples.s[i])).norm();
         if (deviation > worst) {
           worst = deviation;
           worst_i = i;
@@ -577,6 +599,37 @@ TEST(LaSegmentTest, SamplesNextToAnInflectionEndAgreeWithPointEvaluation) {
         EXPECT_NEAR(samples.theta[i], seg.theta(samples.s[i]), 1e-14) << what << " i=" << i;
       }
       EXPECT_LE(worst, kPosRelTol * c.length) << what << ": worst deviation " << worst << " at i=" << worst_i;
+    }
+  }
+}
+
+TEST(LaSegmentTest, PositionNextToAnInflectionEndMatchesQuadrature) {
+  // position() takes the stretch within 1 rad of an inflection end from the inflection
+  // series and the rest by adaptive quadrature. Truth: inflectionReference. Both ends,
+  // both turning directions, alphas from nearly 0 to -8, segments turning 0.3 rad (all
+  // series) and 3 rad (series, then quadrature), stations down to 1e-9 L from either
+  // end; positions within 1e-13 L (position's tolerance here is 1e-14).
+  constexpr double kPosRelTol = 1e-13;
+  for (double alpha : {-0.3, -1.0, -1.5, -3.0, -8.0}) {
+    for (double turning : {0.3, 3.0}) {
+      for (double sign : {1.0, -1.0}) {
+        for (bool zero_at_start : {true, false}) {
+          // The turning of an inflection-end segment is kappa_far L / e, e = 1 - 1/alpha.
+          const double length = 1.7, e = 1.0 - 1.0 / alpha;
+          const double k_far = sign * turning * e / length;
+          const LaSegment seg(alpha, length, Vec2(0.4, -1.1), 0.9, zero_at_start ? 0.0 : k_far,
+                              zero_at_start ? k_far : 0.0);
+          std::vector<double> at = stations(length, 24);
+          for (double r : {1e-9, 1e-6, 1e-3}) {
+            at.push_back(r * length);
+            at.push_back((1.0 - r) * length);
+          }
+          for (double s : at) {
+            expectNear(seg.position(s, 1e-14), inflectionReference(seg, s), kPosRelTol * length,
+                       describe(seg) + " s=" + std::to_string(s));
+          }
+        }
+      }
     }
   }
 }

@@ -322,6 +322,9 @@ std::vector<Shape> cornerShapes() {
       {"rectangle from a corner", {{0, 0}, {120, 0}, {120, 80}, {0, 80}}, true, {0, 1, 2, 3}},
       {"rectangle from mid-edge", {{60, 0}, {120, 0}, {120, 80}, {0, 80}, {0, 0}}, true, {1, 2, 3, 4}},
       {"star", star, true, {0, 1, 2, 3, 4}},
+      // A bar's outline: each short end lies between two corners closer than two windows
+      // (a glyph's stem end), so each corner's wide turn holds the other's too.
+      {"bar", {{0, 0}, {300, 0}, {300, 24}, {0, 24}}, true, {0, 1, 2, 3}},
   };
 }
 

@@ -205,6 +205,70 @@ TEST(TripleLaHermite, RoundTripRecoversLengthAndJointCurvatures) {
   EXPECT_EQ(recovered, trials);
 }
 
+// The same for joint curvatures of either sign (alpha < 0): a piece whose end
+// curvatures have opposite signs is built as two LaSegments split where the law's
+// y = sign(k) |k|^(-alpha), linear in s, crosses 0.
+std::pair<HermiteEnd, HermiteEnd> chainEndsThroughInflections(double alpha, const HermiteEnd& start, double length,
+                                                              double k1, double k2, double k3) {
+  const std::array<double, 4> k = {start.kappa, k1, k2, k3};
+  const std::array<double, 3> f = {0.25, 0.5, 0.25};
+  auto y = [&](double kappa) { return std::copysign(std::pow(std::abs(kappa), -alpha), kappa); };
+  Vec2 p = start.point;
+  double theta = start.theta;
+  auto add = [&](double len, double ka, double kb) {
+    const LaSegment seg(alpha, len, p, theta, ka, kb);
+    p = seg.end(1e-15);
+    theta = seg.theta(seg.length());
+  };
+  for (int i = 0; i < 3; ++i) {
+    const double ell = f[i] * length;
+    if (k[i] * k[i + 1] < 0.0) {
+      const double s_zero = ell * y(k[i]) / (y(k[i]) - y(k[i + 1]));
+      add(s_zero, k[i], 0.0);
+      add(ell - s_zero, 0.0, k[i + 1]);
+    } else {
+      add(ell, k[i], k[i + 1]);
+    }
+  }
+  return {start, HermiteEnd{p, theta, k3}};
+}
+
+TEST(TripleLaHermite, RoundTripThroughInflections) {
+  // S-shaped chains (an inflection inside one or two pieces, or zero end curvatures),
+  // alphas whose -1/alpha is not an integer among them (the law is singular at the
+  // inflection): the solve meets the end conditions and joints (expectValidCurve) and
+  // recovers the length and joint curvatures to 1e-8.
+  std::mt19937 rng(20260426);  // seed: fixed, so failures reproduce
+  std::uniform_real_distribution<double> unit(0.0, 1.0), angle(-kPi, kPi);
+  // signs of (k0, k1, k2, k3); 0: that end curvature is 0
+  const std::vector<std::array<int, 4>> patterns = {{1, -1, 1, 1}, {1, 1, -1, -1}, {0, -1, 1, 0}, {-1, 1, -1, 1}};
+  int recovered = 0, trials = 0;
+  for (double alpha : {-3.0, -2.5, -2.0, -1.5, -1.25, -1.0, -0.75, -0.4, -0.25}) {
+    for (const auto& pattern : patterns) {
+      for (int trial = 0; trial < 2; ++trial) {
+        const double scale = std::pow(10.0, 2.0 * unit(rng) - 1.0);  // 0.1 .. 10
+        std::array<double, 4> k{};
+        for (int i = 0; i < 4; ++i) k[i] = pattern[i] * (0.3 + 1.2 * unit(rng)) / scale;
+        const double mean = (std::abs(k[0]) + 3 * std::abs(k[1]) + 3 * std::abs(k[2]) + std::abs(k[3])) / 8.0;
+        const double length = (0.3 + 0.9 * unit(rng)) / mean;
+        const HermiteEnd start{Vec2(10 * angle(rng), 10 * angle(rng)), angle(rng), k[0]};
+        const auto [a, b] = chainEndsThroughInflections(alpha, start, length, k[1], k[2], k[3]);
+        const std::string what = describe(alpha, a, b) + " pattern " + std::to_string(pattern[0]) +
+                                 std::to_string(pattern[1]) + std::to_string(pattern[2]) + std::to_string(pattern[3]);
+        const TripleLaHermiteSolve solve = solveTripleLaHermite(alpha, a, b);
+        ++trials;
+        expectValidCurve(solve, alpha, a, b, what);
+        if (!solve.report.usable()) continue;
+        EXPECT_NEAR(solve.length, length, 1e-8 * length) << what;
+        EXPECT_NEAR(solve.kappa1, k[1], 1e-8 * std::abs(k[1])) << what;
+        EXPECT_NEAR(solve.kappa2, k[2], 1e-8 * std::abs(k[2])) << what;
+        if (std::abs(solve.length - length) <= 1e-8 * length) ++recovered;
+      }
+    }
+  }
+  EXPECT_EQ(recovered, trials);
+}
+
 TEST(TripleLaHermite, InvariantUnderSimilarityAndMirror) {
   const HermiteEnd a = at(0, 0, -0.4, 0.7), b = at(1, 0, 0.5, 1.1);
   for (double alpha : {-2.0, -1.0, 0.0, 1.0, 2.5}) {

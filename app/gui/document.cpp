@@ -29,7 +29,7 @@ FitOptions optionsFromJson(const nlohmann::json& j) {
   o.g2 = g2 == "bisection" ? G2Method::kBisection : g2 == "off" ? G2Method::kOff : G2Method::kNewton;
   o.g2_threshold = j.value("g2_threshold", o.g2_threshold);
   o.cleanup.detect_corners = j.value("corners", true);
-  o.polish = j.value("polish", false);
+  o.polish = j.value("polish", o.polish);
   return o;
 }
 

@@ -282,7 +282,7 @@ void MainWindow::updatePreview() {
   QElapsedTimer clock;
   clock.start();
   FitOptions quick = m_document.options();
-  quick.polish = false;  // the preview keeps up with the pen; the pen-up fit polishes
+  quick.polish = false;  // the preview keeps up with the pen; the pen-up fit adds stage 7
   try {
     m_canvas->setPreview(fitStroke(current, quick));
   } catch (const StrokeError&) {

@@ -42,9 +42,10 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   form->addRow("G2 threshold", m_threshold);
   m_corners = new QCheckBox("keep sharp corners");
   form->addRow("", m_corners);
-  m_polish = new QCheckBox("polish (least squares)");
-  m_polish->setToolTip("After pen-up, fit the whole G2 chain to the points: closer to them and truer alphas, "
-                       "about 20 ms a stroke");
+  m_polish = new QCheckBox("fit the chain to the points");
+  m_polish->setToolTip("After pen-up, fit the whole G2 chain to the points by least squares and choose the "
+                       "segments they need (stage 7): closer to them, truer alphas. Off: the paper's "
+                       "construction alone (stages 1-6)");
   form->addRow("", m_polish);
   m_alpha = new QDoubleSpinBox;
   m_alpha->setRange(-kAlphaRange, kAlphaRange);

@@ -19,7 +19,7 @@ FitOptions fitOptionsFrom(const Args& args) {
   if (!(o.g2_threshold > 0.0)) throw UsageError("--g2-threshold must be positive");
   o.cleanup.detect_corners = !args.has("--no-corners");
   o.cleanup.detect_closed = !args.has("--no-close");
-  o.polish = args.has("--polish");
+  o.polish = !args.has("--paper-only");
   return o;
 }
 

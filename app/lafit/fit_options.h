@@ -11,7 +11,7 @@ namespace la::cli {
 
 inline const std::set<std::string> kFitValued = {"--tolerance", "--tolerance-abs", "--max-extrema", "--g2",
                                                  "--g2-threshold", "--significance"};
-inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--polish", "--stages"};
+inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--paper-only", "--stages"};
 
 inline constexpr const char* kFitOptionsHelp = R"(fitting options:
   --tolerance F        max distance from the points, as a fraction of the stroke's
@@ -25,8 +25,10 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
   --g2-threshold T     relative curvature gap allowed at a joint (default 1e-6)
   --no-corners         fair across sharp corners instead of keeping them
   --no-close           never close a stroke whose end meets its start
-  --polish             fit the G2 chain to the points by least squares after the
-                       construction (closer to the points, truer alphas; ~20 ms a stroke)
+  --paper-only         stop after the paper's joint deformation (stage 6): no least-
+                       squares fit of the whole chain to the points and no choice of
+                       its segments (stage 7, on by default: closer to the points,
+                       truer alphas, the segments the points need)
   --stages             include every intermediate stage in the JSON
 )";
 

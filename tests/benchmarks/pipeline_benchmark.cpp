@@ -13,6 +13,7 @@
 
 #include <random>
 
+#include "fitting/chain_fit.h"
 #include "fitting/pipeline.h"
 
 namespace la {
@@ -54,18 +55,19 @@ void BM_FitStroke(benchmark::State& state) {
 }
 BENCHMARK(BM_FitStroke)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
 
-// The same with the least-squares polish of the G2 chain (FitOptions::polish, opt-in).
-void BM_FitStrokePolished(benchmark::State& state) {
+// The paper's pipeline alone (FitOptions::polish off: stages 1-6, as the app's live
+// preview runs it while the pen moves).
+void BM_FitStrokePaperOnly(benchmark::State& state) {
   const Stroke stroke = chainStroke(static_cast<int>(state.range(0)));
   FitOptions options;
-  options.polish = true;
+  options.polish = false;
   const FitResult check = fitStroke(stroke, options);
   if (check.curve.pieces.empty()) state.SkipWithError("the stroke does not fit");
   for (auto _ : state) benchmark::DoNotOptimize(fitStroke(stroke, options));
   state.counters["points"] = static_cast<double>(stroke.samples.size());
-  state.counters["polish_ms"] = check.timings.polish_ms;
+  state.counters["segments"] = check.quality.segments;
 }
-BENCHMARK(BM_FitStrokePolished)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FitStrokePaperOnly)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 void BM_StageCleanup(benchmark::State& state) {
   const Stroke stroke = chainStroke(1000);
@@ -119,6 +121,26 @@ void BM_StageG2(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_StageG2)->Unit(benchmark::kMicrosecond);
+
+void BM_StageChainFit(benchmark::State& state) {
+  // Stage 7's least-squares fit alone, as the pipeline calls it (an even subsample of 300
+  // points, 8 steps), from the chain stages 1-6 make.
+  FitOptions paper;
+  paper.polish = false;
+  const FitResult start = fitStroke(chainStroke(1000), paper);
+  std::vector<LaSegment> chain;
+  for (const CurvePiece& p : start.curve.pieces) chain.push_back(p.segment);
+  std::vector<ChainFoot> feet;
+  std::vector<double> distance;
+  projectOnChain(chain, false, start.cleaned.points, feet, distance);
+  ChainFitOptions options;
+  options.max_points = 300;
+  options.max_iterations = 8;
+  options.noise = 0.001 * start.quality.diagonal;
+  if (!fitChain(chain, start.cleaned.points, feet, options).improved) state.SkipWithError("the fit does not improve");
+  for (auto _ : state) benchmark::DoNotOptimize(fitChain(chain, start.cleaned.points, feet, options));
+}
+BENCHMARK(BM_StageChainFit)->Unit(benchmark::kMicrosecond);
 
 void BM_StageQuality(benchmark::State& state) {
   const FitResult fit = fitStroke(chainStroke(1000));

@@ -1,0 +1,1066 @@
+#include "fitting/chain_fit.h"
+
+#include <ceres/jet.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "core/quadrature.h"
+
+namespace la {
+namespace {
+
+// Forward-mode derivatives of a segment's local curve by its own four unknowns.
+using Jet = ceres::Jet<double, 4>;
+enum LocalUnknown { kAlpha = 0, kLogKappaStart = 1, kLogKappaEnd = 2, kLogTurning = 3 };
+
+// A segment with a zero-curvature end keeps alpha at most this: steeper laws (alpha -> 0-)
+// put all the turning at the far end, a corner in all but name.
+constexpr double kInflectionAlphaCap = -0.2;
+// A joint's |kappa| stays above this fraction of the chain's largest: towards 0 a law
+// with alpha > 0 turns abruptly (rho^alpha runs to infinity), a trap for the solver. A
+// stroke that really wants zero curvature there has an inflection the segmentation
+// missed; the pipeline splits it.
+constexpr double kKappaFloor = 1e-3;
+// Largest change of an unknown in one step (normalized frame: unit diagonal): the
+// linear model of a chain is trusted only this far. A longer step is scaled down whole.
+constexpr double kMaxAlphaStep = 1.0, kMaxRelativeKappaStep = 0.5, kMaxLogTurningStep = 0.5, kMaxAngleStep = 0.5,
+                 kMaxPointStep = 0.2;
+// Panels (see panelGrid): largest turning (radians), largest width (fraction of the
+// length), and the grading of v ~ rho^alpha towards its small end (largest ratio of v
+// across a panel, down to a smallest v). Positions between panel ends are quintic
+// Hermite interpolants (position, tangent and curvature at both ends). On the fitting
+// grid they stay within ~1e-6 of the segment length of LaSegment's adaptive quadrature
+// (measured on the tests' laws: far below any noise, and a model build is cheap); the
+// Jacobian's grid is coarser still (derivatives need a few digits, not ten); distances
+// reported to the user come from the measuring grid, within ~1e-9.
+struct GridRule {
+  double turning, width, grading, smallest;
+};
+constexpr GridRule kFittingGrid{0.25, 0.5, 0.5, 1e-4};
+constexpr GridRule kJacobianGrid{0.5, 0.5, 0.25, 1e-3};
+constexpr GridRule kMeasuringGrid{0.1, 0.0625, 0.7071067811865476, 1e-6};
+constexpr int kMaxPanels = 512;
+constexpr int kPanelNodes = 3;  // Gauss-Legendre nodes per panel (the positions at panel ends)
+// Below this |x| the series of expm1(x)/x and log1p(x)/x are exact to rounding.
+constexpr double kSeriesLimit = 1e-4;
+// Newton steps per foot and per evaluation (the feet move little between steps), and
+// nodes per segment of the polyline that gives the first feet when none are passed.
+constexpr int kFootSteps = 1, kFirstFootSteps = 3, kFinalFootSteps = 1;
+constexpr int kCoarseFeetSamples = 64;
+// Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
+constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0, kMaxLambda = 1e10;
+// Weight of a constraint violation (squared) in the merit function that accepts steps:
+// the steps satisfy the linearized constraints, so this only keeps the iterates from
+// trading closure for fit.
+constexpr double kConstraintMerit = 1e8;
+constexpr double kNegligibleDecrease = 0.1;
+// Closing the constraints after the iterations: at most this many steps, until their
+// violation (normalized units) is below kRestored.
+constexpr int kRestoreSteps = 5;
+constexpr double kRestored = 1e-12;
+// A chain meets its constraints (joints, closure, a fixed end) below this violation
+// (normalized units); snapToJoints closes what is left exactly.
+constexpr double kAdmissible = 1e-7;
+
+inline double valueOf(double x) { return x; }
+inline double valueOf(const Jet& x) { return x.a; }
+
+// expm1(x) / x and log1p(x) / x, smooth through x = 0.
+template <typename T>
+T expm1OverX(const T& x) {
+  using std::expm1;
+  if (std::abs(valueOf(x)) < kSeriesLimit) return 1.0 + x * (0.5 + x * (1.0 / 6.0 + x * (1.0 / 24.0)));
+  return expm1(x) / x;
+}
+template <typename T>
+T log1pOverX(const T& x) {
+  using std::log1p;
+  if (std::abs(valueOf(x)) < kSeriesLimit) return 1.0 + x * (-0.5 + x * (1.0 / 3.0 - x * 0.25));
+  return log1p(x) / x;
+}
+
+enum class ZeroEnd { kNone, kStart, kEnd };
+
+// The turning |theta(u) - theta(0)| of an LA segment at fraction u of its length, from
+// alpha, y0 = log|kappa_start|, y1 = log|kappa_end| and its length. With rho(u)^alpha =
+// rho0^alpha (1 + r u), r = (rho1/rho0)^alpha - 1 = expm1(alpha l), l = y0 - y1:
+//   integral_0^u kappa/kappa0 = ((1 + r u)^(1 - 1/alpha) - 1) / (r (1 - 1/alpha))
+//                             = E(z) u G(r u),  z = (alpha - 1) R u G(r u),  R = r / alpha = l E(alpha l),
+// with E(x) = expm1(x)/x and G(x) = log1p(x)/x: no division by alpha, alpha - 1 or l,
+// so alpha = 0 (Nielsen's spiral), alpha = 1 (log spiral) and the circle (l = 0) need no
+// case of their own. A zero end (alpha < 0, e = 1 - 1/alpha > 1): kappa ~ (1 - u)^(e - 1)
+// towards a zero end, u^(e - 1) from a zero start.
+template <typename T>
+T turningAt(const T& alpha, const T& y0, const T& y1, const T& length, double u, ZeroEnd zero) {
+  using std::exp;
+  using std::expm1;
+  switch (zero) {
+    case ZeroEnd::kNone: {
+      const T l = y0 - y1;
+      const T big_r = l * expm1OverX(alpha * l);
+      const T g = log1pOverX(alpha * big_r * u);
+      return length * exp(y0) * expm1OverX((alpha - 1.0) * big_r * u * g) * u * g;
+    }
+    case ZeroEnd::kEnd: {
+      const T e = 1.0 - 1.0 / alpha;
+      if (u >= 1.0) return length * exp(y0) / e;
+      return -length * exp(y0) * expm1(e * std::log1p(-u)) / e;
+    }
+    case ZeroEnd::kStart: {
+      const T e = 1.0 - 1.0 / alpha;
+      if (u <= 0.0) return T(0.0);
+      return length * exp(y1) * exp(e * std::log(u)) / e;
+    }
+  }
+  return T(0.0);
+}
+
+// |kappa| at fraction u (see turningAt).
+template <typename T>
+T kappaMagnitudeAt(const T& alpha, const T& y0, const T& y1, double u, ZeroEnd zero) {
+  using std::exp;
+  switch (zero) {
+    case ZeroEnd::kNone: {
+      const T l = y0 - y1, big_r = l * expm1OverX(alpha * l);
+      return exp(y0 - big_r * u * log1pOverX(alpha * big_r * u));
+    }
+    case ZeroEnd::kEnd:
+      if (u >= 1.0) return T(0.0);
+      return exp(y0 - std::log1p(-u) / alpha);
+    case ZeroEnd::kStart:
+      if (u <= 0.0) return T(0.0);
+      return exp(y1 - std::log(u) / alpha);
+  }
+  return T(0.0);
+}
+
+// The law of one segment: alpha, log|kappa| at both ends (unused at a zero end), length
+// and turning direction.
+struct Law {
+  double alpha = -1.0, y0 = 0.0, y1 = 0.0, length = 1.0, sign = 1.0;
+  double log_turning = 0.0;  // log of |total turning| (the unknown that sets the length)
+  ZeroEnd zero = ZeroEnd::kNone;
+};
+
+// theta(u) and kappa(u) of a law for doubles, as turningAt and kappaMagnitudeAt with
+// the segment's constants computed once: two transcendental calls a node, the hot loop of
+// every model build.
+class LawEvaluator {
+ public:
+  explicit LawEvaluator(const Law& law) : law_(law) {
+    if (law.zero == ZeroEnd::kNone) {
+      const double l = law.y0 - law.y1;
+      big_r_ = l * expm1OverX(law.alpha * l);
+      kappa_ref_ = std::exp(law.y0);
+    } else {
+      e_ = 1.0 - 1.0 / law.alpha;
+      kappa_ref_ = std::exp(law.zero == ZeroEnd::kEnd ? law.y0 : law.y1);
+    }
+    turning_ref_ = law.sign * law.length * kappa_ref_;
+  }
+  double theta(double u) const {
+    switch (law_.zero) {
+      case ZeroEnd::kNone: {
+        const double g = log1pOverX(law_.alpha * big_r_ * u);
+        return turning_ref_ * u * g * expm1OverX((law_.alpha - 1.0) * big_r_ * u * g);
+      }
+      case ZeroEnd::kEnd: return u >= 1.0 ? turning_ref_ / e_ : -turning_ref_ * std::expm1(e_ * std::log1p(-u)) / e_;
+      case ZeroEnd::kStart: return u <= 0.0 ? 0.0 : turning_ref_ * std::exp(e_ * std::log(u)) / e_;
+    }
+    return 0.0;
+  }
+  double kappa(double u) const {
+    switch (law_.zero) {
+      case ZeroEnd::kNone: return law_.sign * kappa_ref_ * std::exp(-big_r_ * u * log1pOverX(law_.alpha * big_r_ * u));
+      case ZeroEnd::kEnd: return u >= 1.0 ? 0.0 : law_.sign * kappa_ref_ * std::exp(-std::log1p(-u) / law_.alpha);
+      case ZeroEnd::kStart: return u <= 0.0 ? 0.0 : law_.sign * kappa_ref_ * std::exp(-std::log(u) / law_.alpha);
+    }
+    return 0.0;
+  }
+
+ private:
+  Law law_;
+  double big_r_ = 0.0, e_ = 1.0, kappa_ref_ = 0.0, turning_ref_ = 0.0;
+};
+
+// Panel ends (fractions of the length) on which a segment is integrated and
+// interpolated: each panel turns at most rule.turning, is at most rule.width of the
+// length, and the law's variable v ~ rho^alpha (linear in u) changes by at most a factor
+// 1/rule.grading across it. The last rule grades the panels geometrically towards an end
+// where v is small against the other end: there kappa behaves like a power of the
+// distance to a (virtual) zero of v, whose derivatives blow up.
+std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
+  double v0 = 1.0, v1 = 1.0, turning;
+  const double e = 1.0 - 1.0 / law.alpha;
+  if (law.zero == ZeroEnd::kNone) {
+    v1 = std::exp(law.alpha * (law.y0 - law.y1));
+    turning = turningAt(law.alpha, law.y0, law.y1, law.length, 1.0, law.zero);
+  } else {
+    (law.zero == ZeroEnd::kStart ? v0 : v1) = 0.0;
+    turning = std::exp(law.zero == ZeroEnd::kEnd ? law.y0 : law.y1) * law.length / e;
+  }
+  std::vector<double> grid;
+  // Equal turning: uniform for the bound, graded as turning ~ u^e from a zero start.
+  const int panels = std::clamp(static_cast<int>(std::ceil(turning / rule.turning)), 1, kMaxPanels);
+  for (int k = 0; k <= panels; ++k) {
+    const double f = static_cast<double>(k) / panels;
+    grid.push_back(law.zero == ZeroEnd::kNone    ? f
+                   : law.zero == ZeroEnd::kStart ? std::pow(f, 1.0 / e)
+                                                 : 1.0 - std::pow(1.0 - f, 1.0 / e));
+  }
+  const int widths = static_cast<int>(std::ceil(1.0 / rule.width));
+  for (int k = 1; k < widths; ++k) grid.push_back(static_cast<double>(k) / widths);
+  const double v_max = std::max(v0, v1), v_min = std::max(std::min(v0, v1), rule.smallest * v_max);
+  for (double v = rule.grading * v_max; v > v_min; v *= rule.grading) grid.push_back((v - v0) / (v1 - v0));
+  if (std::min(v0, v1) == 0.0) grid.push_back((v_min - v0) / (v1 - v0));
+  std::sort(grid.begin(), grid.end());
+  std::vector<double> out;
+  for (double u : grid) {
+    u = std::clamp(u, 0.0, 1.0);
+    if (out.empty() || u > out.back() + 1e-12) out.push_back(u);
+  }
+  out.back() = 1.0;
+  return out;
+}
+
+// A segment's local curve (start at the origin heading along +x) at its panel ends:
+// position, tangent angle (with its cosine and sine) and signed curvature, as doubles
+// or as Jets carrying their derivatives by the segment's four local unknowns.
+template <typename T>
+struct Panels {
+  T length{};  // the segment's length (with its derivatives, for Jets)
+  std::vector<double> grid;
+  std::vector<T> x, y, theta, c, s, kappa;
+
+  std::size_t panelOf(double u) const {
+    const auto it = std::upper_bound(grid.begin(), grid.end(), u);
+    const std::size_t k = it == grid.begin() ? 0 : static_cast<std::size_t>(it - grid.begin()) - 1;
+    return std::min(k, grid.size() - 2);
+  }
+  // Per panel, the quintic Hermite interpolant of the position (below) as a polynomial
+  // in t = (u - u_i) / h_i: filled by prepare() for the double panels.
+  std::vector<std::array<double, 6>> poly_x, poly_y;
+  std::vector<double> inverse_width;
+
+  void prepare(double length) {
+    const std::size_t panels = grid.size() - 1;
+    poly_x.resize(panels);
+    poly_y.resize(panels);
+    inverse_width.resize(panels);
+    auto coefficients = [](double p0, double v0, double w0, double p1, double v1, double w1) {
+      return std::array<double, 6>{p0, v0, 0.5 * w0, -10 * p0 - 6 * v0 - 1.5 * w0 + 10 * p1 - 4 * v1 + 0.5 * w1,
+                                   15 * p0 + 8 * v0 + 1.5 * w0 - 15 * p1 + 7 * v1 - w1,
+                                   -6 * p0 - 3 * v0 - 0.5 * w0 + 6 * p1 - 3 * v1 + 0.5 * w1};
+    };
+    for (std::size_t i = 0; i < panels; ++i) {
+      const double h = grid[i + 1] - grid[i], hl = h * length, hl2 = hl * hl;
+      inverse_width[i] = 1.0 / h;
+      poly_x[i] = coefficients(x[i], hl * c[i], -hl2 * kappa[i] * s[i], x[i + 1], hl * c[i + 1], -hl2 * kappa[i + 1] * s[i + 1]);
+      poly_y[i] = coefficients(y[i], hl * s[i], hl2 * kappa[i] * c[i], y[i + 1], hl * s[i + 1], hl2 * kappa[i + 1] * c[i + 1]);
+    }
+  }
+  // Position, unit tangent and (linearly interpolated) curvature at u, from the
+  // prepared polynomials: no transcendental function, the hot loop of the foot projection.
+  void frame(double u, Vec2& point, Vec2& tangent, double& curvature) const {
+    const std::size_t i = panelOf(u);
+    const double t = (u - grid[i]) * inverse_width[i];
+    const auto& a = poly_x[i];
+    const auto& b = poly_y[i];
+    point = {a[0] + t * (a[1] + t * (a[2] + t * (a[3] + t * (a[4] + t * a[5])))),
+             b[0] + t * (b[1] + t * (b[2] + t * (b[3] + t * (b[4] + t * b[5]))))};
+    tangent = Vec2(a[1] + t * (2 * a[2] + t * (3 * a[3] + t * (4 * a[4] + t * 5 * a[5]))),
+                   b[1] + t * (2 * b[2] + t * (3 * b[3] + t * (4 * b[4] + t * 5 * b[5]))))
+                  .normalized();
+    curvature = kappa[i] + t * (kappa[i + 1] - kappa[i]);
+  }
+  // Quintic Hermite position at u: positions, first derivatives L (cos, sin) and second
+  // derivatives L^2 kappa (-sin, cos) in u at the panel's ends.
+  void position(double u, const T& length, T& out_x, T& out_y) const {
+    const std::size_t i = panelOf(u);
+    const double h = grid[i + 1] - grid[i], t = (u - grid[i]) / h;
+    const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
+    const double h0 = 1 - 10 * t3 + 15 * t4 - 6 * t5, h3 = 1 - h0;
+    const double h1 = (t - 6 * t3 + 8 * t4 - 3 * t5) * h, h4 = (-4 * t3 + 7 * t4 - 3 * t5) * h;
+    const double h2 = 0.5 * (t2 - 3 * t3 + 3 * t4 - t5) * h * h, h5 = 0.5 * (t3 - 2 * t4 + t5) * h * h;
+    const T l2 = length * length;
+    out_x = h0 * x[i] + h3 * x[i + 1] + length * (h1 * c[i] + h4 * c[i + 1]) -
+            l2 * (h2 * kappa[i] * s[i] + h5 * kappa[i + 1] * s[i + 1]);
+    out_y = h0 * y[i] + h3 * y[i + 1] + length * (h1 * s[i] + h4 * s[i + 1]) +
+            l2 * (h2 * kappa[i] * c[i] + h5 * kappa[i + 1] * c[i + 1]);
+  }
+};
+
+// The panels of a law, positions by Gauss-Legendre on each panel.
+template <typename T>
+void buildPanels(const Law& law, Panels<T>& p) {
+  p.grid = panelGrid(law, std::is_same_v<T, Jet> ? kJacobianGrid : kFittingGrid);
+  T alpha(law.alpha), y0(law.y0), y1(law.y1), length(law.length);
+  if constexpr (std::is_same_v<T, Jet>) {
+    alpha.v[kAlpha] = 1.0;
+    y0.v[kLogKappaStart] = 1.0;
+    y1.v[kLogKappaEnd] = 1.0;
+    // L = |turning| / (turning of the unit-length segment): the length follows alpha and
+    // the end curvatures at a fixed turning.
+    Jet log_turning(law.log_turning);
+    log_turning.v[kLogTurning] = 1.0;
+    length = exp(log_turning) / turningAt(alpha, y0, y1, Jet(1.0), 1.0, law.zero);
+  }
+  p.length = length;
+  const LawEvaluator fast(law);
+  auto theta = [&](double u) -> T {
+    if constexpr (std::is_same_v<T, Jet>) return law.sign * turningAt(alpha, y0, y1, length, u, law.zero);
+    else return fast.theta(u);
+  };
+  auto kappa = [&](double u) -> T {
+    if constexpr (std::is_same_v<T, Jet>) return law.sign * kappaMagnitudeAt(alpha, y0, y1, u, law.zero);
+    else return fast.kappa(u);
+  };
+  using std::cos;
+  using std::sin;
+  const auto& rule = gaussLegendre<kPanelNodes>();
+  const std::size_t n = p.grid.size();
+  for (auto* v : {&p.x, &p.y, &p.theta, &p.c, &p.s, &p.kappa}) v->resize(n);
+  p.x[0] = p.y[0] = T(0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    p.theta[k] = theta(p.grid[k]);
+    p.kappa[k] = kappa(p.grid[k]);
+    p.c[k] = cos(p.theta[k]);
+    p.s[k] = sin(p.theta[k]);
+    if (k == 0) continue;
+    const double a = p.grid[k - 1], h = p.grid[k] - a;
+    T cx(0.0), cy(0.0);
+    for (int g = 0; g < kPanelNodes; ++g) {
+      const T t = theta(a + h * rule.node[g]);
+      cx += rule.weight[g] * cos(t);
+      cy += rule.weight[g] * sin(t);
+    }
+    p.x[k] = p.x[k - 1] + (h * length) * cx;
+    p.y[k] = p.y[k - 1] + (h * length) * cy;
+  }
+  if constexpr (std::is_same_v<T, double>) p.prepare(law.length);
+}
+
+Eigen::Matrix2d rotation(double a) {
+  const double c = std::cos(a), s = std::sin(a);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  return r;
+}
+
+// Where a point's foot is on a chain: position, unit tangent, curvature.
+struct FootFrame {
+  Vec2 point = Vec2::Zero();
+  Vec2 tangent = Vec2::UnitX();
+  double kappa = 0.0;
+  Vec2 normal() const { return {-tangent.y(), tangent.x()}; }
+};
+
+// A chain as the foot projection sees it: per segment its law, its local panels and its
+// start pose (with the rotation of its local frame).
+struct ChainGeometry {
+  std::vector<Law> laws;
+  std::vector<Panels<double>> panels;
+  std::vector<Vec2> start;     // pose of each segment's start, and of the chain's end
+  std::vector<double> angle;
+  std::vector<Eigen::Matrix2d> rotations;  // of each segment's start angle
+  double total_length = 0.0;
+  bool closed = false;
+
+  std::size_t size() const { return laws.size(); }
+  double length(std::size_t i) const { return laws[i].length; }
+  FootFrame frame(const ChainFoot& f) const {
+    Vec2 p, t;
+    double k;
+    panels[f.segment].frame(f.u, p, t, k);
+    const Eigen::Matrix2d& r = rotations[f.segment];
+    return {start[f.segment] + r * p, r * t, k};
+  }
+};
+
+// Newton steps on the closest-point condition t . (X - P(s)) = 0, s the arc length
+// along the chain, crossing joints (and a closed chain's seam) as needed; returns the
+// frame at the final foot.
+FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot, int steps) {
+  const std::size_t n = g.size();
+  FootFrame f = g.frame(foot);
+  for (int step = 0; step < steps; ++step) {
+    const Vec2 d = point - f.point;
+    const double ds = f.tangent.dot(d) / std::max(0.25, 1.0 - f.kappa * f.normal().dot(d));
+    double s = foot.u * g.length(foot.segment) + ds;
+    std::size_t i = foot.segment;
+    for (std::size_t guard = 0; guard <= n && s > g.length(i); ++guard) {
+      if (i + 1 < n || g.closed) {
+        s -= g.length(i);
+        i = (i + 1) % n;
+      } else {
+        s = g.length(i);
+      }
+    }
+    for (std::size_t guard = 0; guard <= n && s < 0.0; ++guard) {
+      if (i > 0 || g.closed) {
+        i = (i + n - 1) % n;
+        s += g.length(i);
+      } else {
+        s = 0.0;
+      }
+    }
+    foot = {i, std::clamp(s / g.length(i), 0.0, 1.0)};
+    f = g.frame(foot);
+    if (std::abs(ds) < 1e-13 * g.total_length) break;
+  }
+  return f;
+}
+
+// Nearest node of a polyline of the chain for every point: the first feet.
+std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2>& points) {
+  std::vector<std::pair<Vec2, ChainFoot>> nodes;
+  for (std::size_t i = 0; i < g.size(); ++i)
+    for (int k = 0; k <= kCoarseFeetSamples; ++k) {
+      const ChainFoot f{i, static_cast<double>(k) / kCoarseFeetSamples};
+      nodes.emplace_back(g.frame(f).point, f);
+    }
+  std::vector<ChainFoot> feet(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    double best = INFINITY;
+    for (const auto& [p, f] : nodes)
+      if (const double d = (p - points[k]).squaredNorm(); d < best) best = d, feet[k] = f;
+  }
+  return feet;
+}
+
+// Where the unknowns sit in the parameter vector, and their bounds.
+struct Layout {
+  std::size_t segments = 0;
+  bool closed = false, fix_start = false, fix_end = false;
+  int start = -1;                 // x of the start point (y follows), -1 if fixed
+  int theta = 0;
+  std::vector<int> kappa;         // per joint: signed curvature, -1 for a zero joint (closed: last = first)
+  std::vector<int> turning, alpha;  // per segment: log |total turning| (sets the length), alpha
+  std::vector<ZeroEnd> zero;      // per segment
+  std::vector<double> turn_sign;  // per segment
+  Eigen::VectorXd lower, upper;   // bounds of every unknown
+  Vec2 start_point = Vec2::Zero();
+  Vec2 end_point = Vec2::Zero();  // where a fixed end stays
+  double total_turning = 0.0;     // closed: the end tangent is the start's plus this
+  double prior_alpha = 0.0, prior_weight = 0.0;  // residual prior_weight (alpha - prior_alpha) per segment
+  int size = 0;
+
+  int constraints() const { return closed ? 3 : fix_end ? 2 : 0; }
+  Law law(const Eigen::VectorXd& x, std::size_t i) const {
+    Law l;
+    l.alpha = x[alpha[i]];
+    l.zero = zero[i];
+    l.y0 = l.zero == ZeroEnd::kStart ? 0.0 : std::log(std::abs(x[kappa[i]]));
+    l.y1 = l.zero == ZeroEnd::kEnd ? 0.0 : std::log(std::abs(x[kappa[i + 1]]));
+    l.log_turning = x[turning[i]];
+    l.length = std::exp(l.log_turning) / turningAt(l.alpha, l.y0, l.y1, 1.0, 1.0, l.zero);
+    l.sign = turn_sign[i];
+    return l;
+  }
+};
+
+using PoseJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic>;  // rows: x, y, angle
+using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// J^T J, one triangle computed (the product dominates a step's linear algebra).
+Eigen::MatrixXd normalMatrix(const Jacobian& j) {
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(j.cols(), j.cols());
+  a.selfadjointView<Eigen::Lower>().rankUpdate(j.transpose());
+  return a.selfadjointView<Eigen::Lower>();
+}
+
+// The chain at given unknowns; with derivatives, also the Jet panels and the Jacobian
+// of every segment's start pose by all unknowns.
+struct ChainModel : ChainGeometry {
+  std::vector<Panels<Jet>> jets;
+  std::vector<PoseJacobian> pose_jacobian;
+  std::vector<std::array<int, 4>> columns;     // global unknown of each local one (-1: none)
+  std::vector<std::array<double, 4>> factors;  // d local / d global
+};
+
+// Builds the model at x. False if a segment's unknowns leave the LA family or overflow.
+bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
+  const std::size_t n = layout.segments;
+  m.closed = layout.closed;
+  m.laws.resize(n);
+  m.panels.resize(n);
+  m.rotations.resize(n);
+  m.start.resize(n + 1);
+  m.angle.resize(n + 1);
+  m.start[0] = layout.fix_start ? layout.start_point : Vec2(x[layout.start], x[layout.start + 1]);
+  m.angle[0] = x[layout.theta];
+  m.total_length = 0.0;
+  if (derivatives) {
+    m.jets.resize(n);
+    m.columns.resize(n);
+    m.factors.resize(n);
+    m.pose_jacobian.assign(n + 1, PoseJacobian::Zero(3, layout.size));
+    if (!layout.fix_start) m.pose_jacobian[0](0, layout.start) = m.pose_jacobian[0](1, layout.start + 1) = 1.0;
+    m.pose_jacobian[0](2, layout.theta) = 1.0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Law law = layout.law(x, i);
+    m.laws[i] = law;
+    Panels<double>& p = m.panels[i];
+    buildPanels(law, p);
+    if (derivatives) {
+      buildPanels(law, m.jets[i]);
+      const int k0 = law.zero == ZeroEnd::kStart ? -1 : layout.kappa[i];
+      const int k1 = law.zero == ZeroEnd::kEnd ? -1 : layout.kappa[i + 1];
+      m.columns[i] = {layout.alpha[i], k0, k1, layout.turning[i]};
+      // d log|kappa| / d kappa = 1 / kappa
+      m.factors[i] = {1.0, k0 < 0 ? 0.0 : 1.0 / x[k0], k1 < 0 ? 0.0 : 1.0 / x[k1], 1.0};
+    }
+    const double ex = p.x.back(), ey = p.y.back(), turn = p.theta.back();
+    if (!std::isfinite(ex) || !std::isfinite(ey) || !std::isfinite(turn) || !(law.length > 0.0)) return false;
+    m.total_length += law.length;
+    const Eigen::Matrix2d& r = m.rotations[i] = rotation(m.angle[i]);
+    const Vec2 world = r * Vec2(ex, ey);
+    m.start[i + 1] = m.start[i] + world;
+    m.angle[i + 1] = m.angle[i] + turn;
+    if (!derivatives) continue;
+    const PoseJacobian& here = m.pose_jacobian[i];
+    PoseJacobian& next = m.pose_jacobian[i + 1];
+    next = here;
+    next.row(0) -= world.y() * here.row(2);
+    next.row(1) += world.x() * here.row(2);
+    const Jet& jx = m.jets[i].x.back();
+    const Jet& jy = m.jets[i].y.back();
+    const Jet& jt = m.jets[i].theta.back();
+    for (int c = 0; c < 4; ++c) {
+      const int col = m.columns[i][c];
+      if (col < 0) continue;
+      const double f = m.factors[i][c];
+      const Vec2 d = r * Vec2(jx.v[c], jy.v[c]);
+      next(0, col) += f * d.x();
+      next(1, col) += f * d.y();
+      next(2, col) += f * jt.v[c];
+    }
+  }
+  return true;
+}
+
+// The points of the problem with their feet and residuals.
+class ChainProblem {
+ public:
+  ChainProblem(const Layout& layout, const std::vector<Vec2>& points) : layout_(layout), points_(points) {}
+
+  // One row per point (its tangent distance), for an open chain the tangential
+  // components of its two end points (pinned to the chain's ends), and one per segment
+  // for the prior on its alpha.
+  std::size_t ends() const { return layout_.closed ? 0 : 2; }
+  std::size_t rows() const { return points_.size() + ends() + layout_.segments; }
+
+  // Projects the feet on the model (an open chain's end points stay at its ends) and
+  // fills the residuals; the constraint values too.
+  void evaluate(const ChainModel& m, std::vector<ChainFoot>& feet, std::vector<FootFrame>& frames, Eigen::VectorXd& r,
+                Eigen::VectorXd& c, bool project = true) const {
+    const std::size_t n_points = points_.size();
+    frames.resize(n_points);
+    if (!layout_.closed) {
+      feet.front() = {0, 0.0};
+      feet.back() = {layout_.segments - 1, 1.0};
+    }
+    for (std::size_t k = 0; k < n_points; ++k) {
+      const bool pinned = !layout_.closed && (k == 0 || k + 1 == n_points);
+      frames[k] = pinned || !project ? m.frame(feet[k]) : projectFoot(m, points_[k], feet[k], kFootSteps);
+    }
+    r.resize(static_cast<Eigen::Index>(rows()));
+    for (std::size_t k = 0; k < n_points; ++k)
+      r[static_cast<Eigen::Index>(k)] = frames[k].normal().dot(frames[k].point - points_[k]);
+    if (!layout_.closed) {
+      const std::size_t last = n_points - 1;
+      r[static_cast<Eigen::Index>(n_points)] =
+          layout_.fix_start ? 0.0 : frames[0].tangent.dot(frames[0].point - points_[0]);
+      r[static_cast<Eigen::Index>(n_points + 1)] =
+          layout_.fix_end ? 0.0 : frames[last].tangent.dot(frames[last].point - points_[last]);
+    }
+    for (std::size_t i = 0; i < layout_.segments; ++i)
+      r[static_cast<Eigen::Index>(n_points + ends() + i)] = layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
+    c.resize(layout_.constraints());
+    const std::size_t n = layout_.segments;
+    if (layout_.closed) {
+      c << m.start[n] - m.start[0], m.angle[n] - m.angle[0] - layout_.total_turning;
+    } else if (layout_.fix_end) {
+      c << m.start[n] - layout_.end_point;
+    }
+  }
+
+  // The Jacobians of the residuals (feet held) and of the constraints.
+  void jacobian(const ChainModel& m, const std::vector<ChainFoot>& feet, const std::vector<FootFrame>& frames,
+                Jacobian& j, Eigen::MatrixXd& cj) const {
+    const std::size_t n_points = points_.size();
+    j.setZero(static_cast<Eigen::Index>(rows()), layout_.size);
+    auto add = [&](Eigen::Index row, std::size_t k, const Vec2& direction) {
+      const ChainFoot& f = feet[k];
+      const Panels<Jet>& p = m.jets[f.segment];
+      Jet px, py;
+      p.position(f.u, p.length, px, py);
+      const Eigen::Matrix2d& r = m.rotations[f.segment];
+      const Vec2 world = r * Vec2(px.a, py.a);
+      const PoseJacobian& jp = m.pose_jacobian[f.segment];
+      auto out = j.row(row);
+      out += direction.x() * jp.row(0) + direction.y() * jp.row(1) + direction.dot(Vec2(-world.y(), world.x())) * jp.row(2);
+      const Vec2 local = r.transpose() * direction;  // direction . (R dP) = (R^T direction) . dP
+      for (int c = 0; c < 4; ++c) {
+        const int col = m.columns[f.segment][c];
+        if (col >= 0) out[col] += m.factors[f.segment][c] * (local.x() * px.v[c] + local.y() * py.v[c]);
+      }
+    };
+    for (std::size_t k = 0; k < n_points; ++k) add(static_cast<Eigen::Index>(k), k, frames[k].normal());
+    if (!layout_.closed) {
+      const std::size_t last = n_points - 1;
+      if (!layout_.fix_start) add(static_cast<Eigen::Index>(n_points), 0, frames[0].tangent);
+      if (!layout_.fix_end) add(static_cast<Eigen::Index>(n_points + 1), last, frames[last].tangent);
+    }
+    for (std::size_t i = 0; i < layout_.segments; ++i)
+      j(static_cast<Eigen::Index>(n_points + ends() + i), layout_.alpha[i]) = layout_.prior_weight;
+    cj.setZero(layout_.constraints(), layout_.size);
+    const std::size_t n = layout_.segments;
+    if (layout_.closed) {
+      cj = m.pose_jacobian[n] - m.pose_jacobian[0];
+    } else if (layout_.fix_end) {
+      cj = m.pose_jacobian[n].topRows(2);
+    }
+  }
+
+ private:
+  const Layout& layout_;
+  const std::vector<Vec2>& points_;
+};
+
+// The damped, bound- and equality-constrained Gauss-Newton model: unknowns at a bound
+// whose gradient points outwards stay there; the rest solve
+//   [A + lambda D   C^T] [d]    [-g]
+//   [C              0  ] [nu] = [-c]
+// (A = J^T J, D its diagonal, g = J^T r).
+class StepSystem {
+ public:
+  StepSystem(const Eigen::MatrixXd& a, const Eigen::VectorXd& g, const Eigen::MatrixXd& cj, const Eigen::VectorXd& x,
+             const Layout& layout, double lambda)
+      : p_(layout.size), m_(static_cast<int>(cj.rows())) {
+    for (int i = 0; i < p_; ++i) {
+      const bool at_lower = x[i] <= layout.lower[i] && g[i] > 0.0;
+      const bool at_upper = x[i] >= layout.upper[i] && g[i] < 0.0;
+      if (!at_lower && !at_upper) free_.push_back(i);
+    }
+    const int f = static_cast<int>(free_.size());
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(f + m_, f + m_);
+    const double floor = 1e-12 * std::max(1.0, a.diagonal().maxCoeff());
+    for (int i = 0; i < f; ++i) {
+      for (int k = 0; k < f; ++k) kkt(i, k) = a(free_[i], free_[k]);
+      kkt(i, i) += lambda * std::max(a(free_[i], free_[i]), floor);
+      for (int r = 0; r < m_; ++r) kkt(f + r, i) = kkt(i, f + r) = cj(r, free_[i]);
+    }
+    lu_.compute(kkt);
+  }
+  // The move for gradient g and constraint values c (zero on the fixed unknowns).
+  Eigen::VectorXd solve(const Eigen::VectorXd& g, const Eigen::VectorXd& c) const {
+    const int f = static_cast<int>(free_.size());
+    Eigen::VectorXd rhs(f + m_);
+    for (int i = 0; i < f; ++i) rhs[i] = -g[free_[i]];
+    for (int r = 0; r < m_; ++r) rhs[f + r] = -c[r];
+    const Eigen::VectorXd solution = lu_.solve(rhs);
+    Eigen::VectorXd step = Eigen::VectorXd::Zero(p_);
+    for (int i = 0; i < f; ++i) step[free_[i]] = solution[i];
+    return step;
+  }
+
+ private:
+  int p_, m_;
+  std::vector<int> free_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+};
+
+// The factor (<= 1) that shortens a step to the trust caps.
+double capFactor(const Eigen::VectorXd& step, const Eigen::VectorXd& caps) {
+  double shrink = 1.0;
+  for (Eigen::Index i = 0; i < step.size(); ++i)
+    if (std::abs(step[i]) > caps[i]) shrink = std::min(shrink, caps[i] / std::abs(step[i]));
+  return shrink;
+}
+
+// Levenberg-Marquardt on the merit |r|^2 + kConstraintMerit |c|^2 from x (and the
+// feet), each step from StepSystem, bent by geodesic acceleration, corrected back onto
+// the constraints. Leaves x, the feet and the model (with derivatives) at the best
+// point; counts iterations on.
+SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
+                     int max_iterations, double relative_decrease, double least_decrease, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
+                     ChainModel& model, int& iterations) {
+  auto merit = [](const Eigen::VectorXd& res, const Eigen::VectorXd& con) {
+    return res.squaredNorm() + kConstraintMerit * con.squaredNorm();
+  };
+  std::vector<FootFrame> frames;
+  Eigen::VectorXd r, c;
+  problem.evaluate(model, feet, frames, r, c);
+  double phi = merit(r, c);
+  Jacobian jac;
+  Eigen::MatrixXd cjac;
+  double lambda = kInitialLambda;
+  ChainModel trial_model;
+  std::vector<ChainFoot> trial_feet, held;
+  std::vector<FootFrame> trial_frames;
+  Eigen::VectorXd trial_r, trial_c;
+  for (int local = 0; local < max_iterations; ++local) {
+    ++iterations;
+    problem.jacobian(model, feet, frames, jac, cjac);
+    const Eigen::MatrixXd a = normalMatrix(jac);
+    const Eigen::VectorXd g = jac.transpose() * r;
+    bool accepted = false, converged = false;
+    for (; lambda < kMaxLambda; lambda *= kLambdaGrowth) {
+      const StepSystem system(a, g, cjac, x, layout, lambda);
+      Eigen::VectorXd step = system.solve(g, c);
+      step *= capFactor(step, step_caps);
+      {
+        // Geodesic acceleration (Transtrum & Sethna 2012): the second directional
+        // derivative of the residuals along the step (feet held), by a finite difference,
+        // bends the step along the curved valleys a chain's rotations make. Used only
+        // where it is small against the step (their criterion).
+        constexpr double kProbe = 0.1, kMaxAcceleration = 0.75;
+        if (!buildModel(layout, x + kProbe * step, false, trial_model)) continue;
+        held = feet;
+        problem.evaluate(trial_model, held, trial_frames, trial_r, trial_c, false);
+        const Eigen::VectorXd r2 = (2.0 / kProbe) * ((trial_r - r) / kProbe - jac * step);
+        const Eigen::VectorXd c2 = (2.0 / kProbe) * ((trial_c - c) / kProbe - cjac * step);
+        const Eigen::VectorXd accel = system.solve(jac.transpose() * r2, c2);
+        if (2.0 * accel.norm() <= kMaxAcceleration * step.norm()) step += 0.5 * accel;
+      }
+      Eigen::VectorXd trial = (x + step).cwiseMax(layout.lower).cwiseMin(layout.upper);
+      if (!trial.allFinite() || !buildModel(layout, trial, false, trial_model)) continue;
+      trial_feet = feet;
+      problem.evaluate(trial_model, trial_feet, trial_frames, trial_r, trial_c);
+      if (trial_c.size() > 0) {
+        // Second-order correction (Nocedal & Wright 18.3): the step met the linearized
+        // constraints; the least-norm move back onto the constraints themselves avoids
+        // rejecting good steps for their second-order violation (the Maratos effect).
+        const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-trial_c);
+        const Eigen::VectorXd corrected = (trial + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+        if (corrected.allFinite() && buildModel(layout, corrected, false, trial_model)) {
+          trial = corrected;
+          problem.evaluate(trial_model, trial_feet, trial_frames, trial_r, trial_c);
+        } else if (!buildModel(layout, trial, false, trial_model)) {
+          continue;
+        }
+      }
+      const double trial_phi = merit(trial_r, trial_c);
+      if (!(trial_phi < phi)) continue;
+      converged = phi - trial_phi < std::max(relative_decrease * phi, least_decrease);
+      x = trial;
+      std::swap(feet, trial_feet);
+      std::swap(frames, trial_frames);
+      std::swap(r, trial_r);
+      std::swap(c, trial_c);
+      phi = trial_phi;
+      lambda = std::max(lambda / kLambdaShrink, 1e-12);
+      accepted = true;
+      break;
+    }
+    if (accepted && !buildModel(layout, x, true, model)) return SolveStatus::kIterationLimit;  // x was modelled as a trial
+    // No step lowers the merit: a minimum to the steps' resolution.
+    if (!accepted || converged) return SolveStatus::kConverged;
+  }
+  return SolveStatus::kIterationLimit;
+}
+
+// Standard error of each segment's alpha: the residuals' variance (SSR over the degrees
+// of freedom) times the alpha entries of the inverse of J^T J restricted to the
+// constraints' null space (Z (Z^T J^T J Z)^-1 Z^T), the usual least-squares covariance.
+// Infinite where the data do not determine alpha at all (a circular segment).
+Eigen::VectorXd alphaStandardErrors(const Layout& layout, const ChainProblem& problem, const ChainModel& model,
+                                    const std::vector<ChainFoot>& feet, const std::vector<FootFrame>& frames,
+                                    const Eigen::VectorXd& r) {
+  Jacobian jac;
+  Eigen::MatrixXd cjac;
+  problem.jacobian(model, feet, frames, jac, cjac);
+  const Eigen::MatrixXd a = normalMatrix(jac);
+  const Eigen::MatrixXd z = cjac.rows() == 0 ? Eigen::MatrixXd::Identity(layout.size, layout.size)
+                                             : Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(cjac).kernel());
+  const double dof = std::max<double>(1.0, static_cast<double>(r.size()) - static_cast<double>(z.cols()));
+  const double variance = r.squaredNorm() / dof;
+  const Eigen::MatrixXd reduced = z.transpose() * a * z;
+  const Eigen::MatrixXd covariance = variance * z * reduced.completeOrthogonalDecomposition().pseudoInverse() * z.transpose();
+  Eigen::VectorXd se(static_cast<Eigen::Index>(layout.segments));
+  for (std::size_t i = 0; i < layout.segments; ++i) {
+    const double v = covariance(layout.alpha[i], layout.alpha[i]);
+    se[static_cast<Eigen::Index>(i)] = v > 0.0 ? std::sqrt(v) : INFINITY;
+  }
+  return se;
+}
+
+bool sameSign(double a, double b) { return (a < 0.0) == (b < 0.0); }
+
+}  // namespace
+
+ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& all_points,
+                        const std::vector<ChainFoot>& initial_feet, const ChainFitOptions& options) {
+  ChainFitResult result;
+  result.segments = initial;
+  const std::size_t n = initial.size();
+  auto refuse = [&](const std::string& why) {
+    result.report = {SolveStatus::kBadInput, 0, INFINITY, "chain fit: " + why};
+    return result;
+  };
+  if (n == 0 || all_points.size() < 3) return refuse("no chain or too few points");
+  if (!initial_feet.empty() && initial_feet.size() != all_points.size()) return refuse("feet and points differ in count");
+
+  // Normalized frame: the chain's start at the origin, unit bounding-box diagonal.
+  const Vec2 origin = initial.front().start();
+  const double scale = boundingBoxDiagonal(all_points);
+  if (!(scale > 0.0) || !allFinite(origin)) return refuse("the points have no extent");
+  std::vector<Vec2> points;
+  points.reserve(all_points.size());
+  for (const Vec2& p : all_points) points.push_back((p - origin) / scale);
+
+  Layout layout;
+  layout.segments = n;
+  layout.closed = options.closed;
+  layout.fix_start = options.fix_start && !options.closed;
+  layout.fix_end = options.fix_end && !options.closed;
+  layout.start_point = points.front();  // a fixed end is the first / last point (a corner)
+  layout.end_point = points.back();
+  std::vector<double> x0, lower, upper, caps;
+  auto add = [&](double value, double lo, double hi, double cap) {
+    x0.push_back(value), lower.push_back(lo), upper.push_back(hi), caps.push_back(cap);
+    return static_cast<int>(x0.size()) - 1;
+  };
+  if (!layout.fix_start) {
+    layout.start = add(0.0, -INFINITY, INFINITY, kMaxPointStep);
+    add(0.0, -INFINITY, INFINITY, kMaxPointStep);
+  }
+  layout.theta = add(initial.front().theta0(), -INFINITY, INFINITY, kMaxAngleStep);
+  // Joint curvatures (the geometric mean of the two sides where a G2 chain has round-off).
+  const std::size_t joints = options.closed ? n : n + 1;
+  std::vector<double> kappa;
+  for (std::size_t j = 0; j < joints; ++j) {
+    const double right = j < n ? initial[j].kappaStart() : initial[n - 1].kappaEnd();
+    const double left = j > 0 ? initial[j - 1].kappaEnd() : (options.closed ? initial[n - 1].kappaEnd() : right);
+    if (!sameSign(left, right) && left != 0.0 && right != 0.0)
+      return refuse("curvature changes sign at joint " + std::to_string(j) + " without an inflection");
+    kappa.push_back((left == 0.0 || right == 0.0) ? 0.0 : std::copysign(std::sqrt(left * right), right) * scale);
+  }
+  double kappa_max = 0.0;
+  for (double k : kappa) kappa_max = std::max(kappa_max, std::abs(k));
+  const double floor = kKappaFloor * kappa_max;
+  for (double k : kappa) {
+    if (k == 0.0) {
+      layout.kappa.push_back(-1);
+      continue;
+    }
+    const double value = std::copysign(std::max(std::abs(k), floor), k);
+    layout.kappa.push_back(k > 0.0 ? add(value, floor, INFINITY, kMaxRelativeKappaStep * std::abs(value))
+                                   : add(value, -INFINITY, -floor, kMaxRelativeKappaStep * std::abs(value)));
+  }
+  if (options.closed) layout.kappa.push_back(layout.kappa.front());
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool zero0 = layout.kappa[i] < 0, zero1 = layout.kappa[i + 1] < 0;
+    if (zero0 && zero1) return refuse("segment " + std::to_string(i) + " is straight");
+    layout.zero.push_back(zero0 ? ZeroEnd::kStart : zero1 ? ZeroEnd::kEnd : ZeroEnd::kNone);
+    layout.turn_sign.push_back((zero0 ? kappa[i + 1] : kappa[i]) < 0.0 ? -1.0 : 1.0);
+    layout.turning.push_back(add(std::log(std::abs(initial[i].turning())), -INFINITY, INFINITY, kMaxLogTurningStep));
+    const double lo = options.min_alpha;
+    const double hi = (zero0 || zero1) ? std::min(kInflectionAlphaCap, options.max_alpha) : options.max_alpha;
+    const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
+    layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
+  }
+  double turning = 0.0;  // summed: the segments' own theta0 may be wrapped
+  for (const LaSegment& s : initial) turning += s.turning();
+  layout.total_turning = 2.0 * std::numbers::pi * std::round(turning / (2.0 * std::numbers::pi));
+  layout.size = static_cast<int>(x0.size());
+  layout.prior_alpha = options.alpha_prior;
+  layout.prior_weight = options.alpha_spread > 0.0 ? options.noise / scale / options.alpha_spread : 0.0;
+  layout.lower = Eigen::Map<Eigen::VectorXd>(lower.data(), layout.size);
+  layout.upper = Eigen::Map<Eigen::VectorXd>(upper.data(), layout.size);
+  const Eigen::VectorXd step_caps = Eigen::Map<Eigen::VectorXd>(caps.data(), layout.size);
+  Eigen::VectorXd x = Eigen::Map<Eigen::VectorXd>(x0.data(), layout.size);
+  result.unknowns = layout.size;
+
+  ChainModel model;
+  if (!buildModel(layout, x, true, model)) return refuse("the initial chain cannot be modelled");
+  std::vector<ChainFoot> feet = initial_feet.empty() ? coarseFeet(model, points) : initial_feet;
+
+  // The iterations use all points, or an even subsample (the ends kept): the chain has a
+  // few dozen unknowns, which a few hundred points pin down.
+  const std::size_t m = points.size();
+  std::vector<std::size_t> pick;
+  const std::size_t used_count = options.max_points > 2 ? std::min(m, options.max_points) : m;
+  for (std::size_t k = 0; k < used_count; ++k) pick.push_back(used_count == m ? k : k * (m - 1) / (used_count - 1));
+  std::vector<Vec2> used_points;
+  std::vector<ChainFoot> used_feet;
+  for (std::size_t k : pick) {
+    used_points.push_back(points[k]);
+    used_feet.push_back(feet[k]);
+    // the given feet may be rough (from the spline's parameters, or an edited chain's)
+    projectFoot(model, points[k], used_feet.back(), kFirstFootSteps);
+  }
+  const ChainProblem used(layout, used_points);
+  std::vector<FootFrame> frames;
+  Eigen::VectorXd r, c;
+  used.evaluate(model, used_feet, frames, r, c);
+  const auto data = static_cast<Eigen::Index>(used_points.size());
+  const double ssr_before = r.head(data).squaredNorm();
+  const bool admissible_before = c.size() == 0 || c.norm() <= kAdmissible;  // the start meets the constraints
+
+  // A step that lowers the sum of squared distances by less than a fraction of one
+  // point's noise variance moves the chain by less than the noise can tell.
+  const double noise = options.noise / scale;
+  const double least = kNegligibleDecrease * noise * noise;
+  int iterations = 0;
+  const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
+                                      x, used_feet, model, iterations);
+  used.evaluate(model, used_feet, frames, r, c);
+  // The iterations keep the constraints only as far as their merit asks; least-norm
+  // moves back onto them (Newton on c = 0) close the joints to rounding.
+  for (int k = 0; k < kRestoreSteps && c.size() > 0 && c.norm() > kRestored; ++k) {
+    Jacobian jac;
+    Eigen::MatrixXd cjac;
+    used.jacobian(model, used_feet, frames, jac, cjac);
+    const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-c);
+    const Eigen::VectorXd moved = (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+    ChainModel trial;
+    if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
+    x = moved;
+    std::swap(model, trial);
+    used.evaluate(model, used_feet, frames, r, c);
+  }
+  const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
+  // Every point's foot: between its picked neighbours' (interpolated where they are on
+  // one segment, else the nearer one's), projected afresh.
+  for (std::size_t j = 0; j + 1 < pick.size(); ++j) {
+    const ChainFoot& a = used_feet[j];
+    const ChainFoot& b = used_feet[j + 1];
+    for (std::size_t k = pick[j]; k < pick[j + 1]; ++k) {
+      const double w = static_cast<double>(k - pick[j]) / static_cast<double>(pick[j + 1] - pick[j]);
+      feet[k] = a.segment == b.segment && b.u >= a.u ? ChainFoot{a.segment, a.u + w * (b.u - a.u)} : w <= 0.5 ? a : b;
+    }
+  }
+  feet.back() = used_feet.back();
+  std::vector<double> distance(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
+    const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps);
+    distance[k] = (f.point - points[k]).norm() * scale;
+  }
+
+  // The result in world units; each segment starts exactly where the previous ends
+  // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.
+  std::vector<LaSegment> fitted;
+  try {
+    Vec2 start = origin + scale * model.start[0];
+    double theta = model.angle[0];
+    for (std::size_t i = 0; i < n; ++i) {
+      const Law& law = model.laws[i];
+      const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : x[layout.kappa[i]] / scale;
+      const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : x[layout.kappa[i + 1]] / scale;
+      fitted.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
+      start = fitted.back().end();
+      theta = fitted.back().theta(fitted.back().length());
+    }
+  } catch (const std::invalid_argument& e) {
+    result.report = {SolveStatus::kBadInput, iterations, INFINITY, std::string("chain fit: ") + e.what()};
+    return result;
+  }
+  const double ssr_after = r.head(data).squaredNorm();
+  // Better: closer to the points, or meeting constraints the start did not meet.
+  const bool admissible = c.size() == 0 || c.norm() <= kAdmissible;
+  result.improved = admissible && (ssr_after < ssr_before || !admissible_before);
+  if (!result.improved) {
+    result.report = {SolveStatus::kConverged, iterations, std::sqrt(ssr_before / used_points.size()) * scale,
+                     "kept: the fit did not bring the chain closer"};
+    projectOnChain(initial, options.closed, all_points, result.feet, result.distance);
+  } else {
+    result.segments = std::move(fitted);
+    result.feet = feet;
+    result.distance = std::move(distance);
+    result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
+    result.report = {status, iterations, std::sqrt(ssr_after / used_points.size()) * scale,
+                     status == SolveStatus::kConverged ? "fitted" : "fitted (iteration limit)"};
+  }
+  result.ssr = 0.0;
+  result.max_distance = 0.0;
+  for (double d : result.distance) {
+    result.ssr += d * d;
+    result.max_distance = std::max(result.max_distance, d);
+  }
+  return result;
+}
+
+void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const std::vector<Vec2>& points,
+                    std::vector<ChainFoot>& feet, std::vector<double>& distance) {
+  // The segments' own geometry: panel ends by LaSegment's adaptive quadrature, theta and
+  // kappa from its law (a straight line: any alpha, zero curvature).
+  ChainGeometry g;
+  g.closed = closed;
+  for (const LaSegment& s : segments) {
+    Law law;
+    law.length = s.length();
+    law.alpha = std::isfinite(s.alpha()) ? s.alpha() : -1.0;
+    law.sign = s.turnSign() < 0.0 ? -1.0 : 1.0;
+    const double k0 = std::abs(s.kappaStart()), k1 = std::abs(s.kappaEnd());
+    law.zero = k0 == 0.0 && k1 == 0.0 ? ZeroEnd::kNone : k0 == 0.0 ? ZeroEnd::kStart : k1 == 0.0 ? ZeroEnd::kEnd : ZeroEnd::kNone;
+    law.y0 = k0 > 0.0 ? std::log(k0) : (k1 > 0.0 ? 0.0 : -700.0);  // a line: kappa = e^-700 = 0
+    law.y1 = k1 > 0.0 ? std::log(k1) : (k0 > 0.0 ? 0.0 : -700.0);
+    Panels<double> p;
+    p.grid = panelGrid(law, kMeasuringGrid);
+    for (double u : p.grid) {
+      const double at = u * s.length(), theta = s.theta(at) - s.theta0();
+      const Vec2 local = rotation(-s.theta0()) * (s.position(at) - s.start());
+      p.x.push_back(local.x());
+      p.y.push_back(local.y());
+      p.theta.push_back(theta);
+      p.c.push_back(std::cos(theta));
+      p.s.push_back(std::sin(theta));
+      p.kappa.push_back(s.kappa(at));
+    }
+    p.prepare(s.length());
+    g.laws.push_back(law);
+    g.panels.push_back(std::move(p));
+    g.start.push_back(s.start());
+    g.angle.push_back(s.theta0());
+    g.rotations.push_back(rotation(s.theta0()));
+    g.total_length += s.length();
+  }
+  if (feet.size() != points.size()) feet = coarseFeet(g, points);
+  distance.resize(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k)
+    distance[k] = (points[k] - projectFoot(g, points[k], feet[k], kFootSteps + 4).point).norm();
+}
+
+Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end) {
+  Chain chain;
+  chain.closed = closed;
+  for (const LaSegment& s : segments) {
+    chain.joints.push_back(s.start());
+    chain.angles.push_back(chain.angles.empty() ? s.theta0()
+                                                : chain.angles.back() + wrapAngle(s.theta0() - chain.angles.back()));
+    ChainPiece piece;
+    piece.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+                 : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                       : PieceKind::kThreePoint;
+    piece.alpha = s.alpha();
+    chain.pieces.push_back(piece);
+  }
+  const LaSegment& last = segments.back();
+  chain.joints.push_back(closed ? segments.front().start() : end);
+  chain.angles.push_back(chain.angles.back() + wrapAngle(last.theta(last.length()) - chain.angles.back()));
+  if (closed) {  // the closing angle keeps the total turning (a whole number of turns)
+    const double turns = std::round((chain.angles.back() - chain.angles.front()) / (2.0 * std::numbers::pi));
+    chain.angles.back() = chain.angles.front() + 2.0 * std::numbers::pi * turns;
+  }
+  return chain;
+}
+
+std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
+                                    const G2Options& options) {
+  Chain chain = chainOfSegments(segments, closed, end);
+  const G2Result res = makeG2(chain, options);
+  if (res.segments.empty() || !res.report.usable()) return {};
+  return res.segments;
+}
+
+}  // namespace la

@@ -1,0 +1,117 @@
+#pragma once
+// Stage 7 (ours; seed 003 stops at stage 6): the whole G2 chain of LA segments fitted to
+// the stroke's points by least squares, in intrinsic form, where G2 holds by
+// construction.
+//
+// Why. Stages 4-6 build each segment from a control triangle whose end tangents come
+// from the smoothing spline, with alpha from the spline's LCG; both are poor witnesses
+// of the stroke (a cubic spline's curvature derivative jumps at every knot), so alphas
+// come out far from the truth and segments stray from the points. Fitting the chain
+// itself fixes both, and moves the joints to where the stroke wants them.
+//
+// Unknowns (a normalized frame: the first point at the origin, unit bounding-box diagonal)
+//   the start point (unless fixed: a part that starts at a corner), the start tangent
+//   theta0, the curvature kappa_j at every joint as log|kappa_j| (its sign kept; an
+//   inflection joint stays at kappa = 0; a closed chain's last joint is its first),
+//   each segment's length as log L_i, and its alpha_i = lo + (hi - lo)(1 + tanh w_i)/2
+//   (lo, hi = min_alpha, max_alpha; hi = kInflectionAlphaCap < 0 for a segment with a
+//   zero-curvature end, DESIGN.md section 2).
+// Segment i is LaSegment(alpha_i, L_i, end of segment i-1, its end tangent, kappa_i,
+// kappa_i+1), so positions, tangents and curvature are continuous at every joint.
+//
+// Residuals. Each point X_k has a foot (segment, fraction of its length); its residual
+// is the tangent distance n . (P(foot) - X_k) (Wang, Pottmann & Liu 2006, "Fitting
+// B-spline curves to point clouds by curvature-based squared distance minimization";
+// it lets the points slide along the curve). The feet are projected again (Newton on
+// the closest-point condition, across joints) after every step, so the cost is the sum
+// of squared distances. An open chain's free end is pinned to the first / last point in
+// both components. A fixed end (a part that ends at a corner) and a closed chain's
+// closure (end point and tangent back at the start) are stiff penalty residuals, which
+// leave gaps of ~1e-9 of the diagonal that snapToJoints (below) closes exactly.
+//
+// Evaluation. theta(u) of a segment has a closed form (written here with expm1/log1p so
+// that alpha = 0, alpha = 1 and the circle are ordinary points, not special cases) and
+// is differentiated by Ceres' Jet (forward-mode). Positions come from 4-point
+// Gauss-Legendre panels each turning at most kPanelTurning, and between panel ends from
+// cubic Hermite interpolation (error ~ turning^4 / 384 of the panel length); the
+// Jacobian of a point is that of its own segment's local curve plus the rigid motion the
+// earlier segments give its start. Levenberg-Marquardt on the normal equations (the
+// unknowns are few: 3 per segment).
+
+#include <vector>
+
+#include "core/la_segment.h"
+#include "core/solve_report.h"
+#include "fitting/chain.h"
+#include "fitting/g2_joints.h"
+
+namespace la {
+
+/// Where a point's nearest point on a chain is: segment and fraction of its length.
+struct ChainFoot {
+  std::size_t segment = 0;
+  double u = 0.0;
+};
+
+struct ChainFitOptions {
+  double min_alpha = -3.0, max_alpha = 3.0;
+  bool closed = false;      // the chain is closed: its end returns to its start, G2
+  bool fix_start = false;   // the chain starts at the first point (a corner) and stays there
+  bool fix_end = false;     // the chain ends at the last point (a corner) and stays there
+  int max_iterations = 30;  // Levenberg-Marquardt steps
+  /// Stop when a step lowers the cost by less than this fraction.
+  double relative_decrease = 1e-7;
+  /// Iterate on at most this many points (evenly spaced, the ends kept; 0: all): the
+  /// chain has a few dozen unknowns, which a few hundred points pin down. Distances are
+  /// reported for every point.
+  std::size_t max_points = 0;
+  /// A broad prior on every alpha, N(alpha_prior, alpha_spread^2), weighed against the
+  /// points by their noise (standard deviation, world units; 0: no prior). Where the
+  /// points determine alpha it changes nothing; where they hardly do (a short segment
+  /// whose curvature barely changes), alpha no longer wanders to a bound while the
+  /// solver crawls along a flat valley: the maximum a posteriori estimate.
+  double noise = 0.0;
+  double alpha_prior = 0.5, alpha_spread = 2.0;
+};
+
+struct ChainFitResult {
+  std::vector<LaSegment> segments;  // the fitted chain (the initial one if not improved)
+  std::vector<ChainFoot> feet;      // of every point on `segments`
+  std::vector<double> distance;     // of every point to `segments` (at its foot)
+  double ssr = 0.0;                 // sum of squared distances
+  double max_distance = 0.0;
+  int unknowns = 0;                 // number of fitted parameters
+  /// Per segment, the standard error of its alpha (least-squares covariance at the fit):
+  /// how well the points determine it. Empty if the fit did not improve the chain.
+  std::vector<double> alpha_standard_error;
+  bool improved = false;            // closer to the points (ssr) than the initial chain
+  SolveReport report;
+};
+
+/// Fits `initial` (an open or closed G2 chain of LA segments, every one with a finite
+/// alpha or a circular arc with nonzero curvature; consecutive segments meeting in
+/// position, tangent and curvature) to `points`, given in order along it (a closed
+/// chain's points start anywhere). `feet`, if not empty, are the points' feet on
+/// `initial` (one per point); otherwise they are found from scratch. A chain it cannot
+/// take comes back unchanged with kBadInput. For fix_end and closed chains the result
+/// closes only to the penalty's ~1e-9: pass it through snapToJoints.
+ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& points,
+                        const std::vector<ChainFoot>& feet, const ChainFitOptions& options = {});
+
+/// Feet and distances of `points` on `segments` (in order along the chain), starting from
+/// `feet` when given (one per point). For a chain that fitChain did not make.
+void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const std::vector<Vec2>& points,
+                    std::vector<ChainFoot>& feet, std::vector<double>& distance);
+
+/// The chain as joints, tangent angles and alphas (fitting/chain.h): a segment with a
+/// zero-curvature end becomes an inflection piece. The last joint is `end` (a corner,
+/// or the start again for a closed chain).
+Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end);
+
+/// Makes a nearly closed or nearly corner-ended chain exact: joints where the segments
+/// start (the last one at `end`), tangents and alphas kept, then G2 by rotating the
+/// joint tangents (makeG2) as in stage 6. Empty if that fails.
+std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
+                                    const G2Options& options);
+
+}  // namespace la

@@ -1,0 +1,247 @@
+#include "fitting/model_selection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+
+namespace la {
+namespace {
+
+// A segment as the edits see it: its law and its signed turning. A chain is rebuilt from
+// its start pose and these (LaSegment positions), so an edit changes only what it names.
+struct Piece {
+  double alpha, kappa0, kappa1, turning;
+};
+
+// Alpha for a segment that gets a zero-curvature end (DESIGN.md section 2: alpha < 0).
+constexpr double kZeroEndAlpha = -1.0;
+// An edited piece's new free end or joint starts at this fraction of its neighbour's
+// curvature (the fit moves it).
+constexpr double kNewKappaFraction = 0.5;
+// A split cuts at the worst point's foot, kept this far from the segment's ends.
+constexpr double kSplitMargin = 0.15;
+// A split is kept if it brings the worst point within the tolerance or this factor closer.
+constexpr double kMarkedGain = 0.99;
+
+std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain) {
+  std::vector<Piece> out;
+  for (const LaSegment& s : chain)
+    out.push_back({std::isfinite(s.alpha()) ? s.alpha() : kZeroEndAlpha, s.kappaStart(), s.kappaEnd(), s.turning()});
+  return out;
+}
+
+double signOf(const Piece& p) { return p.turning < 0.0 ? -1.0 : 1.0; }
+
+// The chain from a start pose and pieces; nullopt if a piece is not an LA segment
+// (curvatures of opposite signs, a zero end with alpha >= 0, no turning).
+std::optional<std::vector<LaSegment>> rebuild(Vec2 start, double theta, const std::vector<Piece>& pieces) {
+  std::vector<LaSegment> chain;
+  try {
+    for (const Piece& p : pieces) {
+      if (p.turning == 0.0 || (p.kappa0 == 0.0 && p.kappa1 == 0.0)) return std::nullopt;
+      const double unit = std::abs(LaSegment(p.alpha, 1.0, Vec2::Zero(), 0.0, p.kappa0, p.kappa1).turning());
+      if (!(unit > 0.0)) return std::nullopt;
+      chain.emplace_back(p.alpha, std::abs(p.turning) / unit, start, theta, p.kappa0, p.kappa1);
+      start = chain.back().end();
+      theta = chain.back().theta(chain.back().length());
+    }
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+  return chain;
+}
+
+// A chain edit: the new pieces, the start pose they hang from, and where the old feet go.
+struct Edit {
+  std::vector<Piece> pieces;
+  Vec2 start;
+  double theta;
+  std::vector<ChainFoot> feet;
+};
+
+// Cuts segment i at fraction u (its two parts: the same law).
+Edit split(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet, std::size_t i, double u) {
+  Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
+  const LaSegment& s = chain[i];
+  const double at = u * s.length(), kappa = s.kappa(at), turn = s.theta(at) - s.theta0();
+  const Piece old = e.pieces[i];
+  e.pieces[i] = {old.alpha, old.kappa0, kappa, turn};
+  e.pieces.insert(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1, Piece{old.alpha, kappa, old.kappa1, old.turning - turn});
+  for (ChainFoot& f : e.feet) {
+    if (f.segment > i) ++f.segment;
+    else if (f.segment == i && f.u >= u) f = {i + 1, (f.u - u) / (1.0 - u)};
+    else if (f.segment == i) f.u /= u;
+  }
+  return e;
+}
+
+// Merges the segments before and after joint j (1 <= j < n; a closed chain's joint 0 is
+// not merged, its seam stays). Nullopt if they cannot be one LA segment.
+std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet, std::size_t j,
+                          double max_turning) {
+  Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
+  const Piece a = e.pieces[j - 1], b = e.pieces[j];
+  if (signOf(a) != signOf(b) || a.kappa1 == 0.0) return std::nullopt;  // an inflection: no single law
+  if (std::abs(a.turning + b.turning) > max_turning) return std::nullopt;
+  const double la = chain[j - 1].length(), lb = chain[j].length();
+  double alpha = (la * a.alpha + lb * b.alpha) / (la + lb);
+  if (a.kappa0 == 0.0 || b.kappa1 == 0.0) alpha = std::min(alpha, kZeroEndAlpha);
+  e.pieces[j - 1] = {alpha, a.kappa0, b.kappa1, a.turning + b.turning};
+  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(j));
+  for (ChainFoot& f : e.feet) {
+    if (f.segment == j - 1) f.u = f.u * la / (la + lb);
+    else if (f.segment == j) f = {j - 1, (la + f.u * lb) / (la + lb)};
+    else if (f.segment > j) --f.segment;
+  }
+  return e;
+}
+
+// Removes segment i: its neighbours meet at one joint, an inflection if they turn
+// opposite ways, else a curvature extremum; at an open end its neighbour reaches the end.
+std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet, std::size_t i,
+                             bool closed) {
+  const std::size_t n = chain.size();
+  if (n < (closed ? 4u : 2u)) return std::nullopt;
+  Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
+  const Piece gone = e.pieces[i];
+  auto fixZeroEnd = [](Piece& p) {
+    if (p.kappa0 == 0.0 || p.kappa1 == 0.0) p.alpha = std::min(p.alpha, kZeroEndAlpha);
+  };
+  if (!closed && (i == 0 || i + 1 == n)) {
+    // An end sliver: the neighbour takes its place up to the stroke's end.
+    Piece& p = e.pieces[i == 0 ? 1 : n - 2];
+    double& free_end = i == 0 ? p.kappa0 : p.kappa1;
+    if (free_end == 0.0 || (free_end < 0.0) != (signOf(p) < 0.0))
+      free_end = signOf(p) * kNewKappaFraction * std::abs(i == 0 ? p.kappa1 : p.kappa0);
+    if (signOf(gone) == signOf(p)) p.turning += gone.turning;
+    if (i == 0) {
+      e.start = chain[1].start();
+      e.theta = chain[1].theta0();
+    }
+  } else {
+    const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
+    Piece& a = e.pieces[before];
+    Piece& b = e.pieces[after];
+    double kappa = 0.0;
+    if (signOf(a) == signOf(b)) {
+      const double ka = std::abs(a.kappa0), kb = std::abs(b.kappa1);
+      kappa = signOf(a) * kNewKappaFraction * (ka > 0.0 && kb > 0.0 ? std::min(ka, kb) : std::max(ka, kb));
+    }
+    a.kappa1 = b.kappa0 = kappa;
+    a.turning += 0.5 * gone.turning;
+    b.turning += 0.5 * gone.turning;
+    if ((a.turning < 0.0) != (signOf(a) < 0.0) || (b.turning < 0.0) != (signOf(b) < 0.0)) return std::nullopt;
+    fixZeroEnd(a);
+    fixZeroEnd(b);
+    if (closed && i == 0) {  // the chain now starts at the old segment 1
+      e.start = chain[1].start();
+      e.theta = chain[1].theta0();
+    }
+  }
+  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i));
+  for (Piece& p : e.pieces) fixZeroEnd(p);
+  for (ChainFoot& f : e.feet) {
+    if (f.segment == i) {  // onto the end of the segment before or the start of the one after
+      const bool to_before = closed ? f.u < 0.5 : (i + 1 == n || (i > 0 && f.u < 0.5));
+      f = to_before ? ChainFoot{(i + n - 1) % n, 1.0} : ChainFoot{(i + 1) % n, 0.0};
+    }
+    if (f.segment > i) --f.segment;  // the erase renumbers those after i
+  }
+  return e;
+}
+
+}  // namespace
+
+SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
+                            const std::vector<ChainFoot>& feet, const SelectionOptions& options) {
+  // A fit that stops at its iteration limit outside the tolerance goes on from where it
+  // stopped, for `patience` times as many steps: a long chain far from its start needs
+  // them, and only such a chain pays for them.
+  auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet) {
+    ChainFitResult r = fitChain(start, points, start_feet, options.fit);
+    if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance) return r;
+    ChainFitOptions longer = options.fit;
+    longer.max_iterations *= options.patience;
+    ChainFitResult more = fitChain(r.segments, points, r.feet, longer);
+    if (!more.improved) return r;
+    more.report.iterations += r.report.iterations;
+    return more;
+  };
+  SelectionResult out;
+  out.fit = fit(chain, feet);
+  const bool closed = options.fit.closed;
+  const double n_points = static_cast<double>(points.size());
+  auto attempt = [&](const std::optional<Edit>& e) -> std::optional<ChainFitResult> {
+    if (!e) return std::nullopt;
+    const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
+    if (!rebuilt || rebuilt->empty()) return std::nullopt;
+    ChainFitResult r = fit(*rebuilt, e->feet);
+    if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
+    return r;
+  };
+  int edits = 0;
+  // An edit is kept if the refitted chain is within the tolerance (or no further outside
+  // it than before) and the points do not object (the F-test above).
+  auto keep = [&](const ChainFitResult& r) {
+    if (r.max_distance > std::max(options.tolerance, out.fit.max_distance)) return false;
+    const double variance = out.fit.ssr / std::max(1.0, n_points - out.fit.unknowns);
+    const double f = (r.ssr - out.fit.ssr) / std::max(1, out.fit.unknowns - r.unknowns) / std::max(variance, 1e-300);
+    return f < options.significance;
+  };
+  // Collapses (slivers first, the thinnest first) and merges (the weakest joint first),
+  // one at a time, until none is kept.
+  auto simplify = [&](bool slivers_only) {
+    for (bool changed = true; changed && edits < options.max_edits;) {
+      changed = false;
+      const std::vector<LaSegment> segs = out.fit.segments;
+      const std::size_t n = segs.size();
+      struct Candidate {
+        double weakness;  // smaller first
+        bool collapse;
+        std::size_t index;
+      };
+      std::vector<Candidate> candidates;
+      for (std::size_t i = 0; i < n; ++i)
+        if (std::abs(segs[i].turning()) < options.sliver_turning) candidates.push_back({std::abs(segs[i].turning()), true, i});
+      for (std::size_t j = 1; j < n && !slivers_only; ++j) {
+        const double k0 = std::abs(segs[j - 1].kappaStart()), kj = std::abs(segs[j].kappaStart());
+        const double k1 = std::abs(segs[j].kappaEnd());
+        if (kj == 0.0) continue;
+        const bool monotone = (k0 - kj) * (kj - k1) > 0.0;
+        const double change = std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj;
+        if (monotone || change < options.weak_extremum) candidates.push_back({1.0 + (monotone ? 0.0 : change), false, j});
+      }
+      std::sort(candidates.begin(), candidates.end(),
+                [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
+      for (const Candidate& c : candidates) {
+        if (edits >= options.max_edits) break;
+        const auto r = attempt(c.collapse ? collapse(segs, out.fit.feet, c.index, closed)
+                                          : merge(segs, out.fit.feet, c.index, options.max_turning));
+        ++edits;
+        if (!r || !keep(*r)) continue;
+        out.fit = *r;
+        ++(c.collapse ? out.collapses : out.merges);
+        changed = true;
+        break;
+      }
+    }
+  };
+  simplify(true);
+  // Splits while some point is out of tolerance (and the split helps).
+  while (edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
+    const std::size_t worst =
+        std::max_element(out.fit.distance.begin(), out.fit.distance.end()) - out.fit.distance.begin();
+    const ChainFoot at = out.fit.feet[worst];
+    const auto r = attempt(split(out.fit.segments, out.fit.feet, at.segment, std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
+    ++edits;
+    // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
+    if (!r || !(r->max_distance <= options.tolerance || r->max_distance < kMarkedGain * out.fit.max_distance)) break;
+    out.fit = *r;
+    ++out.splits;
+  }
+  simplify(false);
+  return out;
+}
+
+}  // namespace la

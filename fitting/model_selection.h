@@ -1,0 +1,53 @@
+#pragma once
+// Stage 7b (ours): how many segments the fitted chain needs. The segmentation of stage 3
+// reads extrema and inflections off a smoothing spline, which noise can fool both ways:
+// a spline wiggle near an inflection or a noisy end adds a piece the stroke does not
+// have; a curvature extremum flattened by the smoothing goes missing. After the chain is
+// fitted to the points (fitting/chain_fit.h), this stage edits it and fits again:
+//
+//  - split: while some point is further than the tolerance, the segment holding the
+//    worst one is cut at that point's foot (an LA segment's sub-pieces are LA segments
+//    of the same alpha, so the cut itself changes nothing);
+//  - collapse: a segment that turns by almost nothing (noise across an inflection, or a
+//    sliver at a stroke's end) is removed, its neighbours meeting at one joint;
+//  - merge: two segments whose joint is a weak curvature extremum or none at all (the
+//    curvature passes through it monotonically) become one.
+//
+// A collapse or merge is kept when the refitted chain stays within the tolerance and
+// the points do not object: the rise of the sum of squared distances, per unknown
+// removed, is below `significance` times the residual variance (the F-test of nested
+// least-squares models). So segments the points need stay, and the count follows the
+// stroke, not the noise.
+
+#include <vector>
+
+#include "fitting/chain_fit.h"
+
+namespace la {
+
+struct SelectionOptions {
+  double tolerance = 0.0;     // max distance from any point to the chain (world units, > 0)
+  double significance = 4.0;  // F threshold (about the 1% level for a few unknowns and many points)
+  int max_edits = 12;         // splits, collapses and merges together
+  int patience = 4;           // a fit outside the tolerance may take this many times fit.max_iterations more
+  /// A segment turning less than this (radians) is a collapse candidate; a joint whose
+  /// curvature changes by less than this fraction on either side, a merge candidate.
+  double sliver_turning = 0.08;
+  double weak_extremum = 0.5;
+  /// Merged segments turn at most this (radians), so every control triangle stays well
+  /// shaped (the app's editing works on them).
+  double max_turning = 2.0;
+  ChainFitOptions fit;
+};
+
+struct SelectionResult {
+  ChainFitResult fit;  // of the chain finally chosen
+  int splits = 0, collapses = 0, merges = 0;
+};
+
+/// Fits `chain` to `points` (fitChain with options.fit; `feet` as there) and edits it as
+/// above. The result is the last accepted chain's fit (the plain fit if no edit helped).
+SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
+                            const std::vector<ChainFoot>& feet, const SelectionOptions& options);
+
+}  // namespace la
