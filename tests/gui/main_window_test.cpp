@@ -381,6 +381,9 @@ TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
   QApplication::processEvents();
+  ASSERT_FALSE(window->document().strokes().empty()) << "the shared data's question mark did not import";
+  ASSERT_TRUE(window->document().strokes().back().fit);
+  ASSERT_GT(window->document().strokes().back().fit->curve.pieces.size(), 2u);
   {  // select a segment, so the LCG dock shows something
     const LaSegment& seg = window->document().strokes().back().fit->curve.pieces[2].segment;
     QTest::mouseClick(window->canvas(), Qt::RightButton, Qt::NoModifier,
