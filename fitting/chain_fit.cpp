@@ -19,9 +19,6 @@ namespace {
 using Jet = ceres::Jet<double, 4>;
 enum LocalUnknown { kAlpha = 0, kLogKappaStart = 1, kLogKappaEnd = 2, kLogTurning = 3 };
 
-// A segment with a zero-curvature end keeps alpha at most this: steeper laws (alpha -> 0-)
-// put all the turning at the far end, a corner in all but name.
-constexpr double kInflectionAlphaCap = -0.2;
 // A joint's |kappa| stays above this fraction of the chain's largest: towards 0 a law
 // with alpha > 0 turns abruptly (rho^alpha runs to infinity), a trap for the solver. A
 // stroke that really wants zero curvature there has an inflection the segmentation
@@ -87,59 +84,6 @@ T log1pOverX(const T& x) {
 
 enum class ZeroEnd { kNone, kStart, kEnd };
 
-// The turning |theta(u) - theta(0)| of an LA segment at fraction u of its length, from
-// alpha, y0 = log|kappa_start|, y1 = log|kappa_end| and its length. With rho(u)^alpha =
-// rho0^alpha (1 + r u), r = (rho1/rho0)^alpha - 1 = expm1(alpha l), l = y0 - y1:
-//   integral_0^u kappa/kappa0 = ((1 + r u)^(1 - 1/alpha) - 1) / (r (1 - 1/alpha))
-//                             = E(z) u G(r u),  z = (alpha - 1) R u G(r u),  R = r / alpha = l E(alpha l),
-// with E(x) = expm1(x)/x and G(x) = log1p(x)/x: no division by alpha, alpha - 1 or l,
-// so alpha = 0 (Nielsen's spiral), alpha = 1 (log spiral) and the circle (l = 0) need no
-// case of their own. A zero end (alpha < 0, e = 1 - 1/alpha > 1): kappa ~ (1 - u)^(e - 1)
-// towards a zero end, u^(e - 1) from a zero start.
-template <typename T>
-T turningAt(const T& alpha, const T& y0, const T& y1, const T& length, double u, ZeroEnd zero) {
-  using std::exp;
-  using std::expm1;
-  switch (zero) {
-    case ZeroEnd::kNone: {
-      const T l = y0 - y1;
-      const T big_r = l * expm1OverX(alpha * l);
-      const T g = log1pOverX(alpha * big_r * u);
-      return length * exp(y0) * expm1OverX((alpha - 1.0) * big_r * u * g) * u * g;
-    }
-    case ZeroEnd::kEnd: {
-      const T e = 1.0 - 1.0 / alpha;
-      if (u >= 1.0) return length * exp(y0) / e;
-      return -length * exp(y0) * expm1(e * std::log1p(-u)) / e;
-    }
-    case ZeroEnd::kStart: {
-      const T e = 1.0 - 1.0 / alpha;
-      if (u <= 0.0) return T(0.0);
-      return length * exp(y1) * exp(e * std::log(u)) / e;
-    }
-  }
-  return T(0.0);
-}
-
-// |kappa| at fraction u (see turningAt).
-template <typename T>
-T kappaMagnitudeAt(const T& alpha, const T& y0, const T& y1, double u, ZeroEnd zero) {
-  using std::exp;
-  switch (zero) {
-    case ZeroEnd::kNone: {
-      const T l = y0 - y1, big_r = l * expm1OverX(alpha * l);
-      return exp(y0 - big_r * u * log1pOverX(alpha * big_r * u));
-    }
-    case ZeroEnd::kEnd:
-      if (u >= 1.0) return T(0.0);
-      return exp(y0 - std::log1p(-u) / alpha);
-    case ZeroEnd::kStart:
-      if (u <= 0.0) return T(0.0);
-      return exp(y1 - std::log(u) / alpha);
-  }
-  return T(0.0);
-}
-
 // The law of one segment: alpha, log|kappa| at both ends (unused at a zero end), length
 // and turning direction.
 struct Law {
@@ -148,46 +92,68 @@ struct Law {
   ZeroEnd zero = ZeroEnd::kNone;
 };
 
-// theta(u) and kappa(u) of a law for doubles, as turningAt and kappaMagnitudeAt with
-// the segment's constants computed once: two transcendental calls a node, the hot loop of
-// every model build.
+// theta(u) - theta(0) and kappa(u) of an LA segment at fraction u of its length, from
+// alpha, y0 = log|kappa_start|, y1 = log|kappa_end|, its length and turning sign; for
+// doubles or for Jets carrying derivatives. With rho(u)^alpha = rho0^alpha (1 + r u),
+// r = (rho1/rho0)^alpha - 1 = expm1(alpha l), l = y0 - y1:
+//   integral_0^u kappa/kappa0 = ((1 + r u)^(1 - 1/alpha) - 1) / (r (1 - 1/alpha))
+//                             = E(z) u G(r u),  z = (alpha - 1) R u G(r u),  R = r / alpha = l E(alpha l),
+// with E(x) = expm1(x)/x and G(x) = log1p(x)/x: no division by alpha, alpha - 1 or l,
+// so alpha = 0 (Nielsen's spiral), alpha = 1 (log spiral) and the circle (l = 0) need no
+// case of their own. A zero end (alpha < 0, e = 1 - 1/alpha > 1): kappa ~ (1 - u)^(e - 1)
+// towards a zero end, u^(e - 1) from a zero start. The segment's constants are computed
+// once: two transcendental calls a node, the hot loop of every model build.
+template <typename T>
 class LawEvaluator {
  public:
-  explicit LawEvaluator(const Law& law) : law_(law) {
-    if (law.zero == ZeroEnd::kNone) {
-      const double l = law.y0 - law.y1;
-      big_r_ = l * expm1OverX(law.alpha * l);
-      kappa_ref_ = std::exp(law.y0);
+  LawEvaluator(const T& alpha, const T& y0, const T& y1, const T& length, double sign, ZeroEnd zero)
+      : alpha_(alpha), zero_(zero) {
+    using std::exp;
+    if (zero == ZeroEnd::kNone) {
+      const T l = y0 - y1;
+      big_r_ = l * expm1OverX(alpha * l);
+      kappa_ref_ = sign * exp(y0);
     } else {
-      e_ = 1.0 - 1.0 / law.alpha;
-      kappa_ref_ = std::exp(law.zero == ZeroEnd::kEnd ? law.y0 : law.y1);
+      e_ = 1.0 - 1.0 / alpha;
+      kappa_ref_ = sign * exp(zero == ZeroEnd::kEnd ? y0 : y1);
     }
-    turning_ref_ = law.sign * law.length * kappa_ref_;
+    turning_ref_ = length * kappa_ref_;
   }
-  double theta(double u) const {
-    switch (law_.zero) {
+
+  T theta(double u) const {
+    using std::exp;
+    using std::expm1;
+    switch (zero_) {
       case ZeroEnd::kNone: {
-        const double g = log1pOverX(law_.alpha * big_r_ * u);
-        return turning_ref_ * u * g * expm1OverX((law_.alpha - 1.0) * big_r_ * u * g);
+        const T g = log1pOverX(alpha_ * big_r_ * u);
+        return turning_ref_ * u * g * expm1OverX((alpha_ - 1.0) * big_r_ * u * g);
       }
-      case ZeroEnd::kEnd: return u >= 1.0 ? turning_ref_ / e_ : -turning_ref_ * std::expm1(e_ * std::log1p(-u)) / e_;
-      case ZeroEnd::kStart: return u <= 0.0 ? 0.0 : turning_ref_ * std::exp(e_ * std::log(u)) / e_;
+      case ZeroEnd::kEnd: return u >= 1.0 ? turning_ref_ / e_ : -turning_ref_ * expm1(e_ * std::log1p(-u)) / e_;
+      case ZeroEnd::kStart: return u <= 0.0 ? T(0.0) : turning_ref_ * exp(e_ * std::log(u)) / e_;
     }
-    return 0.0;
+    return T(0.0);
   }
-  double kappa(double u) const {
-    switch (law_.zero) {
-      case ZeroEnd::kNone: return law_.sign * kappa_ref_ * std::exp(-big_r_ * u * log1pOverX(law_.alpha * big_r_ * u));
-      case ZeroEnd::kEnd: return u >= 1.0 ? 0.0 : law_.sign * kappa_ref_ * std::exp(-std::log1p(-u) / law_.alpha);
-      case ZeroEnd::kStart: return u <= 0.0 ? 0.0 : law_.sign * kappa_ref_ * std::exp(-std::log(u) / law_.alpha);
+  T kappa(double u) const {
+    using std::exp;
+    switch (zero_) {
+      case ZeroEnd::kNone: return kappa_ref_ * exp(-big_r_ * u * log1pOverX(alpha_ * big_r_ * u));
+      case ZeroEnd::kEnd: return u >= 1.0 ? T(0.0) : kappa_ref_ * exp(-std::log1p(-u) / alpha_);
+      case ZeroEnd::kStart: return u <= 0.0 ? T(0.0) : kappa_ref_ * exp(-std::log(u) / alpha_);
     }
-    return 0.0;
+    return T(0.0);
   }
 
  private:
-  Law law_;
-  double big_r_ = 0.0, e_ = 1.0, kappa_ref_ = 0.0, turning_ref_ = 0.0;
+  T alpha_;
+  ZeroEnd zero_;
+  T big_r_{0.0}, e_{1.0}, kappa_ref_{0.0}, turning_ref_{0.0};
 };
+
+// |total turning| of a law per unit length: its length is |turning| over this.
+template <typename T>
+T unitTurning(const T& alpha, const T& y0, const T& y1, ZeroEnd zero) {
+  return LawEvaluator<T>(alpha, y0, y1, T(1.0), 1.0, zero).theta(1.0);
+}
 
 // Panel ends (fractions of the length) on which a segment is integrated and
 // interpolated: each panel turns at most rule.turning, is at most rule.width of the
@@ -200,7 +166,7 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
   const double e = 1.0 - 1.0 / law.alpha;
   if (law.zero == ZeroEnd::kNone) {
     v1 = std::exp(law.alpha * (law.y0 - law.y1));
-    turning = turningAt(law.alpha, law.y0, law.y1, law.length, 1.0, law.zero);
+    turning = law.length * unitTurning(law.alpha, law.y0, law.y1, law.zero);
   } else {
     (law.zero == ZeroEnd::kStart ? v0 : v1) = 0.0;
     turning = std::exp(law.zero == ZeroEnd::kEnd ? law.y0 : law.y1) * law.length / e;
@@ -309,18 +275,12 @@ void buildPanels(const Law& law, Panels<T>& p) {
     // the end curvatures at a fixed turning.
     Jet log_turning(law.log_turning);
     log_turning.v[kLogTurning] = 1.0;
-    length = exp(log_turning) / turningAt(alpha, y0, y1, Jet(1.0), 1.0, law.zero);
+    length = exp(log_turning) / unitTurning(alpha, y0, y1, law.zero);
   }
   p.length = length;
-  const LawEvaluator fast(law);
-  auto theta = [&](double u) -> T {
-    if constexpr (std::is_same_v<T, Jet>) return law.sign * turningAt(alpha, y0, y1, length, u, law.zero);
-    else return fast.theta(u);
-  };
-  auto kappa = [&](double u) -> T {
-    if constexpr (std::is_same_v<T, Jet>) return law.sign * kappaMagnitudeAt(alpha, y0, y1, u, law.zero);
-    else return fast.kappa(u);
-  };
+  const LawEvaluator<T> evaluator(alpha, y0, y1, length, law.sign, law.zero);
+  auto theta = [&](double u) { return evaluator.theta(u); };
+  auto kappa = [&](double u) { return evaluator.kappa(u); };
   using std::cos;
   using std::sin;
   const auto& rule = gaussLegendre<kPanelNodes>();
@@ -459,7 +419,7 @@ struct Layout {
     l.y0 = l.zero == ZeroEnd::kStart ? 0.0 : std::log(std::abs(x[kappa[i]]));
     l.y1 = l.zero == ZeroEnd::kEnd ? 0.0 : std::log(std::abs(x[kappa[i + 1]]));
     l.log_turning = x[turning[i]];
-    l.length = std::exp(l.log_turning) / turningAt(l.alpha, l.y0, l.y1, 1.0, 1.0, l.zero);
+    l.length = std::exp(l.log_turning) / unitTurning(l.alpha, l.y0, l.y1, l.zero);
     l.sign = turn_sign[i];
     return l;
   }
@@ -928,25 +888,6 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     std::swap(model, trial);
     used.evaluate(model, used_feet, frames, r, c);
   }
-  const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
-  // Every point's foot: between its picked neighbours' (interpolated where they are on
-  // one segment, else the nearer one's), projected afresh.
-  for (std::size_t j = 0; j + 1 < pick.size(); ++j) {
-    const ChainFoot& a = used_feet[j];
-    const ChainFoot& b = used_feet[j + 1];
-    for (std::size_t k = pick[j]; k < pick[j + 1]; ++k) {
-      const double w = static_cast<double>(k - pick[j]) / static_cast<double>(pick[j + 1] - pick[j]);
-      feet[k] = a.segment == b.segment && b.u >= a.u ? ChainFoot{a.segment, a.u + w * (b.u - a.u)} : w <= 0.5 ? a : b;
-    }
-  }
-  feet.back() = used_feet.back();
-  std::vector<double> distance(m);
-  for (std::size_t k = 0; k < m; ++k) {
-    const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
-    const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps);
-    distance[k] = (f.point - points[k]).norm() * scale;
-  }
-
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.
   std::vector<LaSegment> fitted;
@@ -974,10 +915,27 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
                      "kept: the fit did not bring the chain closer"};
     projectOnChain(initial, options.closed, all_points, result.feet, result.distance);
   } else {
-    result.segments = std::move(fitted);
-    result.feet = feet;
-    result.distance = std::move(distance);
+    const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
     result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
+    // Every point's foot: between its picked neighbours' (interpolated where they are on
+    // one segment, else the nearer one's), projected afresh.
+    for (std::size_t j = 0; j + 1 < pick.size(); ++j) {
+      const ChainFoot& a = used_feet[j];
+      const ChainFoot& b = used_feet[j + 1];
+      for (std::size_t k = pick[j]; k < pick[j + 1]; ++k) {
+        const double w = static_cast<double>(k - pick[j]) / static_cast<double>(pick[j + 1] - pick[j]);
+        feet[k] = a.segment == b.segment && b.u >= a.u ? ChainFoot{a.segment, a.u + w * (b.u - a.u)} : w <= 0.5 ? a : b;
+      }
+    }
+    feet.back() = used_feet.back();
+    result.distance.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
+      const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps);
+      result.distance[k] = (f.point - points[k]).norm() * scale;
+    }
+    result.segments = std::move(fitted);
+    result.feet = std::move(feet);
     result.report = {status, iterations, std::sqrt(ssr_after / used_points.size()) * scale,
                      status == SolveStatus::kConverged ? "fitted" : "fitted (iteration limit)"};
   }

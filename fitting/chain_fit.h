@@ -9,13 +9,14 @@
 // come out far from the truth and segments stray from the points. Fitting the chain
 // itself fixes both, and moves the joints to where the stroke wants them.
 //
-// Unknowns (a normalized frame: the first point at the origin, unit bounding-box diagonal)
+// Unknowns (a normalized frame: the chain's start at the origin, unit bounding-box
+// diagonal), each with bounds:
 //   the start point (unless fixed: a part that starts at a corner), the start tangent
-//   theta0, the curvature kappa_j at every joint as log|kappa_j| (its sign kept; an
-//   inflection joint stays at kappa = 0; a closed chain's last joint is its first),
-//   each segment's length as log L_i, and its alpha_i = lo + (hi - lo)(1 + tanh w_i)/2
-//   (lo, hi = min_alpha, max_alpha; hi = kInflectionAlphaCap < 0 for a segment with a
-//   zero-curvature end, DESIGN.md section 2).
+//   theta0, the signed curvature kappa_j at every joint (its sign kept and |kappa_j| at
+//   least 1e-3 of the largest; an inflection joint stays at 0; a closed chain's last
+//   joint is its first), each segment's log |total turning| (which, with its law, sets
+//   its length) and its alpha in [min_alpha, max_alpha] (at most kInflectionAlphaCap
+//   for a segment with a zero-curvature end, DESIGN.md section 2).
 // Segment i is LaSegment(alpha_i, L_i, end of segment i-1, its end tangent, kappa_i,
 // kappa_i+1), so positions, tangents and curvature are continuous at every joint.
 //
@@ -23,20 +24,22 @@
 // is the tangent distance n . (P(foot) - X_k) (Wang, Pottmann & Liu 2006, "Fitting
 // B-spline curves to point clouds by curvature-based squared distance minimization";
 // it lets the points slide along the curve). The feet are projected again (Newton on
-// the closest-point condition, across joints) after every step, so the cost is the sum
-// of squared distances. An open chain's free end is pinned to the first / last point in
-// both components. A fixed end (a part that ends at a corner) and a closed chain's
-// closure (end point and tangent back at the start) are stiff penalty residuals, which
-// leave gaps of ~1e-9 of the diagonal that snapToJoints (below) closes exactly.
+// the closest-point condition, across joints) at every evaluation, so the cost is the
+// sum of squared distances. An open chain's free ends are pinned to the first / last
+// point. A weak prior on each alpha (ChainFitOptions::noise) keeps alphas the points do
+// not determine from wandering. A fixed end (a part that ends at a corner) and a closed
+// chain's closure (end point and tangent back at the start) are equality constraints,
+// met to ~1e-12 of the diagonal; snapToJoints (below) closes them exactly.
 //
-// Evaluation. theta(u) of a segment has a closed form (written here with expm1/log1p so
-// that alpha = 0, alpha = 1 and the circle are ordinary points, not special cases) and
-// is differentiated by Ceres' Jet (forward-mode). Positions come from 4-point
-// Gauss-Legendre panels each turning at most kPanelTurning, and between panel ends from
-// cubic Hermite interpolation (error ~ turning^4 / 384 of the panel length); the
-// Jacobian of a point is that of its own segment's local curve plus the rigid motion the
-// earlier segments give its start. Levenberg-Marquardt on the normal equations (the
-// unknowns are few: 3 per segment).
+// Evaluation. theta(u) and kappa(u) of a segment have closed forms (written with
+// expm1/log1p so that alpha = 0, alpha = 1 and the circle are ordinary points),
+// differentiated by Ceres' Jet (forward mode) on a coarser panel grid. Positions come
+// from 3-point Gauss-Legendre panels and, between panel ends, quintic Hermite
+// interpolation; the Jacobian of a point is that of its own segment's local curve plus
+// the rigid motion the earlier segments give its start. Levenberg-Marquardt with the
+// bounds and constraints in each step's KKT system, geodesic acceleration and a
+// second-order correction, on an even subsample of the points (the unknowns are few:
+// about 3 per segment).
 
 #include <vector>
 
@@ -46,6 +49,10 @@
 #include "fitting/g2_joints.h"
 
 namespace la {
+
+/// A segment with a zero-curvature end keeps alpha at most this: steeper laws
+/// (alpha -> 0-) put all the turning at the far end, a corner in all but name.
+inline constexpr double kInflectionAlphaCap = -0.2;
 
 /// Where a point's nearest point on a chain is: segment and fraction of its length.
 struct ChainFoot {
