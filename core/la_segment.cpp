@@ -155,6 +155,14 @@ LaSegment LaSegment::arc(double length, Vec2 start, double theta0, double kappa)
   return LaSegment(std::numeric_limits<double>::infinity(), length, start, theta0, kappa, kappa);
 }
 
+LaSegment LaSegment::withTurning(double alpha, double turning, Vec2 start, double theta0, double kappa_start,
+                                 double kappa_end) {
+  const double unit = std::abs(LaSegment(alpha, 1.0, Vec2::Zero(), 0.0, kappa_start, kappa_end).turning());
+  if (!(unit > 0.0) || !(std::abs(turning) > 0.0))
+    throw std::invalid_argument("LaSegment::withTurning: the law or the turning is zero");
+  return LaSegment(alpha, std::abs(turning) / unit, start, theta0, kappa_start, kappa_end);
+}
+
 double LaSegment::kappa(double s) const {
   switch (law_) {
     case Law::kConstant:

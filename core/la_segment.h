@@ -48,6 +48,12 @@ class LaSegment {
   /// A circular arc (a line if kappa == 0): alpha = inf.
   static LaSegment arc(double length, Vec2 start, double theta0, double kappa);
 
+  /// The segment of the law (alpha, end curvatures) whose total turning is |turning|
+  /// (its length follows: at a fixed law the turning grows linearly with it). Throws
+  /// std::invalid_argument as the constructor does, and when the law does not turn.
+  static LaSegment withTurning(double alpha, double turning, Vec2 start, double theta0, double kappa_start,
+                               double kappa_end);
+
   double alpha() const { return alpha_; }
   double length() const { return length_; }
   const Vec2& start() const { return start_; }

@@ -39,10 +39,7 @@ std::optional<std::vector<LaSegment>> rebuild(Vec2 start, double theta, const st
   std::vector<LaSegment> chain;
   try {
     for (const Piece& p : pieces) {
-      if (p.turning == 0.0 || (p.kappa0 == 0.0 && p.kappa1 == 0.0)) return std::nullopt;
-      const double unit = std::abs(LaSegment(p.alpha, 1.0, Vec2::Zero(), 0.0, p.kappa0, p.kappa1).turning());
-      if (!(unit > 0.0)) return std::nullopt;
-      chain.emplace_back(p.alpha, std::abs(p.turning) / unit, start, theta, p.kappa0, p.kappa1);
+      chain.push_back(LaSegment::withTurning(p.alpha, p.turning, start, theta, p.kappa0, p.kappa1));
       start = chain.back().end();
       theta = chain.back().theta(chain.back().length());
     }

@@ -409,8 +409,6 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
   // the tolerance for clean data.
   so.tolerance = options.polish ? tol : std::min(tol, std::max(noise.floor, kSplineToleranceFraction * tol));
   so.noise_sigma = noise.sigma;
-
-
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;
@@ -578,7 +576,12 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
     const std::size_t joints = seg.splits.size();
     // Interior joints of an open part; any joint of a closed one that keeps enough pieces.
     auto droppable = [&](std::size_t j) { return seg.closed ? joints > kMinClosedPieces : (j > 0 && j < n); };
-    if (res.segments.empty()) {
+    if (options.polish) {
+      // With stage 7 to follow, no piece is cut here: where stages 5-6 find no G2 chain
+      // the fit starts from the spline (chainFromSpline), and its model selection adds
+      // the segments the points need (cutting here leaves slivers where the spline
+      // wiggles); it measures and corrects the deviations itself.
+    } else if (res.segments.empty()) {
       for (std::size_t i = 0; i < n; ++i) {
         if (solvePiece(chain, i).report.usable()) continue;
         any = true;
@@ -592,7 +595,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
           halve[i] = true;
         }
       }
-    } else if (!options.polish) {  // (stage 7 measures and corrects the deviations itself)
+    } else {
       const std::vector<double> dev = pieceDeviations(res.segments, members, part.points, smooth, diag);
       const std::vector<double> own = pieceDeviations({}, members, part.points, smooth, diag);
       double excess = 0.0;  // largest deviation beyond what is allowed
@@ -609,10 +612,6 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
         any = best->excess > 0.0;
       }
     }
-    // With stage 7 to follow, no piece is cut here: where stages 5-6 find no G2 chain the
-    // fit starts from the spline (chainFromSpline), and its model selection adds the
-    // segments the points need (cutting here leaves slivers where the spline wiggles).
-    if (options.polish) any = false;
     if (any && pass < kMaxRefinePasses) {
       if (seg.closed && drop[n]) drop[0] = true;  // joint n of a closed chain is joint 0
       std::vector<SplitPoint> splits;
@@ -687,7 +686,8 @@ PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vec
 // spline's has the other) to start with, then adjusted as each segment is shot towards
 // the next split point (below). G2 by construction; empty if some piece has no LA
 // segment.
-std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed) {
+std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
+                                       double min_alpha, double max_alpha) {
   constexpr int kSteps = 16;           // per piece, for its turning and length
   constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
   auto measure = [&](double t0, double t1, double& turning, double& length) {
@@ -759,14 +759,12 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
     // unknowns: y = log|kappa_end| (when not an inflection), alpha
     double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
     const bool zero_end = k0 == 0.0 || !free_end;
-    const double hi = zero_end ? -0.2 : 3.0;
+    const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
     double alpha = zero_end ? -1.0 : kPolishStartAlpha;
     auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
       const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
       try {
-        const double unit = std::abs(LaSegment(aa, 1.0, Vec2::Zero(), 0.0, k0, k1).turning());
-        if (!(unit > 0.0)) return std::nullopt;
-        return LaSegment(aa, std::abs(turning[i]) / unit, start, theta, k0, k1);
+        return LaSegment::withTurning(aa, turning[i], start, theta, k0, k1);
       } catch (const std::invalid_argument&) {
         return std::nullopt;
       }
@@ -795,7 +793,7 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
       a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
       const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
       if (!step.allFinite()) break;
-      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), -3.0, hi);
+      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), lo, hi);
       const auto rn = miss(ny, na);
       if (!rn || rn->norm() >= r->norm()) break;
       y = ny;
@@ -867,6 +865,7 @@ std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const
 // closer to the points than that chain; fit.max_dev is then known.
 void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
                 const FitOptions& options) {
+  if (!fit.spline) return;  // a straight part
   SelectionOptions so;
   so.tolerance = tol;
   ChainFitOptions& co = so.fit;
@@ -878,14 +877,13 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   co.max_points = kFitPoints;
   co.max_iterations = kFitIterations;
   co.noise = noise;
-  if (!fit.spline) return;  // a straight part
   std::vector<LaSegment> start = fit.segments;
   bool straight = false;
   for (const LaSegment& s : start) straight |= !std::isfinite(s.alpha()) && s.kappaStart() == 0.0;
   std::vector<ChainFoot> feet = fit.feet;
   if (!fit.g2.usable() || straight || start.size() != fit.spans.size()) {
     std::vector<PieceReport> spans = fit.spans;
-    start = chainFromSpline(*fit.spline, spans, part.closed);
+    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha);
     feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
   }
   if (start.empty()) return;
