@@ -806,7 +806,11 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   }
   double kappa_max = 0.0;
   for (double k : kappa) kappa_max = std::max(kappa_max, std::abs(k));
-  const double floor = kKappaFloor * kappa_max;
+  // (never above a joint of the initial chain: raising one would change the chain before
+  // the fit, and an edit's refit would start from a chain that is not the edited one)
+  double floor = kKappaFloor * kappa_max;
+  for (double k : kappa)
+    if (k != 0.0) floor = std::min(floor, std::abs(k));
   for (double k : kappa) {
     if (k == 0.0) {
       layout.kappa.push_back(-1);

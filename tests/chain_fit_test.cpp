@@ -196,6 +196,21 @@ TEST(ChainFit, FixedEndsStay) {
   EXPECT_LT(maxDistance(snapped, points), 1e-5);
 }
 
+// A hairpin's tight turn running out into a nearly straight stroke: the joint's
+// curvature is 1e-4 of the turn's, far below the solver's floor for joint curvatures
+// (1e-3 of the largest). Started from the truth itself, the fit must not move the chain
+// away from the points (a floor applied to the start would bend the straight part
+// before the fit begins, and the fit would be measured against that bent chain).
+TEST(ChainFit, KeepsAJointFlatterThanItsFloor) {
+  const std::vector<LaSegment> truth =
+      buildChain({0, 0}, 0.0, 0.5, {{-1.0, 6.0, 5e-5}, {0.5, 120.0, 2e-3}});
+  const std::vector<Vec2> points = sampleChain(truth, 150, 0.0, 5);
+  const ChainFitResult r = fitChain(truth, points, {});
+  ASSERT_EQ(r.segments.size(), 2u) << r.report.message;
+  EXPECT_LT(r.max_distance, 1e-5 * 120.0);
+  EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 120.0);
+}
+
 // A closed chain (an oval of four segments, G2 all round) fitted from a wrong start:
 // closure and G2 at the seam after snapToJoints, and back on the points.
 TEST(ChainFit, ClosedChainClosesG2) {
