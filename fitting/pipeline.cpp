@@ -5,6 +5,8 @@
 #include <functional>
 #include <map>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include <Eigen/Dense>
@@ -36,6 +38,8 @@ constexpr int kFitIterations = 8;
 // A G2 chain from stage 7 replaces one with curvature gaps unless it strays further than
 // this many times that chain's largest deviation (and the tolerance).
 constexpr double kG2Preference = 2.0;
+// A step longer than this many median steps is a gap the fit fills (fillGaps).
+constexpr double kGapSteps = 10.0;
 constexpr int kAlphaBisections = 12;
 constexpr int kMaxAlphaRelaxations = 3;
 // A piece turning less than this (radians) counts as straight: no turning direction.
@@ -138,9 +142,34 @@ struct Part {
   bool starts_at_corner = false;
 };
 
+// Points along every step of `p` (and the closing step of a closed part) longer than
+// kGapSteps times `spacing`, that far apart. A long step is a straight edge the data
+// do not sample (a font outline's closing stem, a polygon's side) or samples the
+// digitizer lost: the points' own polyline is the best guess there, and without points
+// along it a fit may loop through the gap. Fits use these; quality is measured on the
+// data alone.
+std::vector<Vec2> fillGaps(const std::vector<Vec2>& p, bool closed, double spacing) {
+  std::vector<Vec2> out;
+  const std::size_t steps = closed ? p.size() : p.size() - 1;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out.push_back(p[i]);
+    if (i >= steps) continue;
+    const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+    const double length = (b - a).norm();
+    if (!(length > kGapSteps * spacing)) continue;
+    const int pieces = static_cast<int>(std::ceil(length / spacing));
+    for (int k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / pieces));
+  }
+  return out;
+}
+
 std::vector<Part> splitAtCorners(const CleanStroke& c) {
   const auto& p = c.points;
-  if (c.corners.empty()) return {Part{p, c.closed, false}};
+  std::vector<double> steps;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) steps.push_back((p[i + 1] - p[i]).norm());
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  const double spacing = steps[steps.size() / 2];
+  if (c.corners.empty()) return {Part{fillGaps(p, c.closed, spacing), c.closed, false}};
   std::vector<std::size_t> cuts = c.corners;
   if (!c.closed) {
     cuts.insert(cuts.begin(), 0);
@@ -152,6 +181,7 @@ std::vector<Part> splitAtCorners(const CleanStroke& c) {
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     Part part;
     for (std::size_t i = cuts[k]; i <= cuts[k + 1]; ++i) part.points.push_back(p[i % p.size()]);
+    part.points = fillGaps(part.points, false, spacing);
     part.starts_at_corner = c.closed || k > 0;
     parts.push_back(std::move(part));
   }

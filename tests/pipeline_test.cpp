@@ -673,6 +673,39 @@ TEST(PipelinePolish, StaysWithinToleranceG2AndBringsAlphaCloser) {
   EXPECT_LT(error_fit, 0.75 * error_paper);
 }
 
+// A closed outline whose one straight edge is not sampled (as font outlines come: the
+// closing stem of DejaVu's g): up the right side from a corner, three quarters of a
+// circle, and back along the bottom edge, which meets the circle tangentially and has
+// no points. The fitted contour must follow that edge too, G2, with no loop in the gap.
+TEST(PipelineGaps, FollowsAnOutlinesUnsampledStraightEdge) {
+  constexpr double kRadius = 100.0, kSpacing = 2.0;
+  const double quarter = 0.5 * std::numbers::pi;
+  Curve truth;
+  truth.closed = true;
+  truth.pieces.push_back({LaSegment::arc(kRadius, {kRadius, -kRadius}, quarter, 0.0), true});
+  truth.pieces.push_back({LaSegment::arc(3.0 * quarter * kRadius, {kRadius, 0.0}, quarter, 1.0 / kRadius), false});
+  truth.pieces.push_back({LaSegment::arc(kRadius, {0.0, -kRadius}, 0.0, 0.0), true});
+  std::vector<Vec2> points;
+  for (std::size_t k = 0; k < 2; ++k) {  // the last edge unsampled
+    const LaSegment& s = truth.pieces[k].segment;
+    const int n = static_cast<int>(std::round(s.length() / kSpacing));
+    for (int i = 0; i < n; ++i) points.push_back(s.position(s.length() * i / n));
+  }
+  points.push_back(truth.pieces[1].segment.end());
+  FitOptions options;
+  options.cleanup.assume_closed = true;
+  const FitResult r = fit(points, options);
+  ASSERT_FALSE(r.curve.pieces.empty());
+  EXPECT_TRUE(r.curve.closed);
+  expectGaps(r);
+  EXPECT_LE(r.quality.max_dev, r.tolerance);
+  const double diagonal = boxDiagonal(points);
+  const Dense dense = denseSamples(r.curve, kDenseStepFraction * diagonal);
+  const auto [worst, at] = maxOf(distancesToCurve(truth, dense.point, diagonal, kPolylineSagitta));
+  EXPECT_LE(worst, r.tolerance) << "at fitted segment " << dense.segment[at] << " of " << r.curve.pieces.size() << "\n"
+                                << describeFit(r);
+}
+
 std::string caseParamName(const ::testing::TestParamInfo<CaseParam>& info) {
   const auto [index, transform] = info.param;
   return caseName(index, transform);

@@ -19,6 +19,8 @@ FitOptions fitOptionsFrom(const Args& args) {
   if (!(o.g2_threshold > 0.0)) throw UsageError("--g2-threshold must be positive");
   o.cleanup.detect_corners = !args.has("--no-corners");
   o.cleanup.detect_closed = !args.has("--no-close");
+  o.cleanup.assume_closed = args.has("--closed");
+  if (o.cleanup.assume_closed && !o.cleanup.detect_closed) throw UsageError("--closed and --no-close contradict each other");
   o.polish = !args.has("--paper-only");
   return o;
 }

@@ -11,7 +11,7 @@ namespace la::cli {
 
 inline const std::set<std::string> kFitValued = {"--tolerance", "--tolerance-abs", "--max-extrema", "--g2",
                                                  "--g2-threshold", "--significance"};
-inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--paper-only", "--stages"};
+inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--closed", "--paper-only", "--stages"};
 
 inline constexpr const char* kFitOptionsHelp = R"(fitting options:
   --tolerance F        max distance from the points, as a fraction of the stroke's
@@ -25,6 +25,8 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
   --g2-threshold T     relative curvature gap allowed at a joint (default 1e-6)
   --no-corners         fair across sharp corners instead of keeping them
   --no-close           never close a stroke whose end meets its start
+  --closed             every stroke is a closed contour, whatever the gap between its
+                       ends (font outlines, profiles whose closing edge is not sampled)
   --paper-only         stop after the paper's joint deformation (stage 6): no least-
                        squares fit of the whole chain to the points and no choice of
                        its segments (stage 7, on by default: closer to the points,
