@@ -182,8 +182,13 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
   }
   const int widths = static_cast<int>(std::ceil(1.0 / rule.width));
   for (int k = 1; k < widths; ++k) grid.push_back(static_cast<double>(k) / widths);
-  const double v_max = std::max(v0, v1), v_min = std::max(std::min(v0, v1), rule.smallest * v_max);
-  for (double v = rule.grading * v_max; v > v_min; v *= rule.grading) grid.push_back((v - v0) / (v1 - v0));
+  // kappa ~ v^(-1/alpha) changes faster than v for |alpha| < 1: below |alpha| = 1/2, v
+  // is graded finer, so that kappa changes by at most the grading squared per panel
+  // (steep laws running into an inflection: alpha -0.05 puts kappa ~ (1 - u)^20).
+  const double power = std::min(1.0, 2.0 * std::abs(law.alpha));
+  const double grading = std::pow(rule.grading, power), smallest = std::pow(rule.smallest, power);
+  const double v_max = std::max(v0, v1), v_min = std::max(std::min(v0, v1), smallest * v_max);
+  for (double v = grading * v_max; v > v_min; v *= grading) grid.push_back((v - v0) / (v1 - v0));
   if (std::min(v0, v1) == 0.0) grid.push_back((v_min - v0) / (v1 - v0));
   std::sort(grid.begin(), grid.end());
   std::vector<double> out;
@@ -828,8 +833,11 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     layout.turn_sign.push_back((zero0 ? kappa[i + 1] : kappa[i]) < 0.0 ? -1.0 : 1.0);
     layout.turning.push_back(add(std::log(std::abs(initial[i].turning())), -INFINITY, INFINITY, kMaxLogTurningStep));
     const double lo = options.min_alpha;
-    const double hi = (zero0 || zero1) ? std::min(kInflectionAlphaCap, options.max_alpha) : options.max_alpha;
     const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
+    // (the cap is lifted to a steeper start's alpha: clamping it would change the chain
+    // before the fit, as a raised curvature floor would, see above)
+    const double cap = std::max(kInflectionAlphaCap, std::min(a, 0.0));
+    const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : options.max_alpha;
     layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
   }
   double turning = 0.0;  // summed: the segments' own theta0 may be wrapped
@@ -1018,7 +1026,24 @@ Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const
 }
 
 std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
-                                    const G2Options& options) {
+                                    const G2Options& options, double reach) {
+  if (!closed && !segments.empty()) {
+    // The similarity about the start that takes the chain's end onto `end`. It moves a
+    // point by the end's miss times the point's distance from the start over the end's,
+    // and no point is further from the start than the chain's length.
+    const Vec2 start = segments.front().start(), from = segments.back().end() - start, to = end - start;
+    double length = 0.0;
+    for (const LaSegment& s : segments) length += s.length();
+    if ((end - segments.back().end()).norm() * length <= reach * from.norm()) {
+      const double scale = to.norm() / from.norm(), turn = signedAngle(from, to);
+      const Eigen::Rotation2Dd rotation(turn);
+      std::vector<LaSegment> out;
+      for (const LaSegment& s : segments)
+        out.emplace_back(s.alpha(), scale * s.length(), start + scale * (rotation * (s.start() - start)),
+                         s.theta0() + turn, s.kappaStart() / scale, s.kappaEnd() / scale);
+      return out;
+    }
+  }
   Chain chain = chainOfSegments(segments, closed, end);
   const G2Result res = makeG2(chain, options);
   if (res.segments.empty() || !res.report.usable()) return {};

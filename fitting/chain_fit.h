@@ -115,10 +115,13 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
 /// or the start again for a closed chain).
 Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end);
 
-/// Makes a nearly closed or nearly corner-ended chain exact: joints where the segments
-/// start (the last one at `end`), tangents and alphas kept, then G2 by rotating the
-/// joint tangents (makeG2) as in stage 6. Empty if that fails.
+/// Makes a nearly closed or nearly corner-ended chain exact. An open chain is scaled and
+/// rotated about its start until its end is at `end`, if that moves no point of it by
+/// more than `reach` (G2 and alphas kept exactly). Otherwise, and for a closed chain:
+/// joints where the segments start (the last one at `end`), tangents and alphas kept,
+/// then G2 by rotating the joint tangents (makeG2) as in stage 6, which fails where a
+/// nearly straight segment has no control triangle. Empty if that fails.
 std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
-                                    const G2Options& options);
+                                    const G2Options& options, double reach = 0.0);
 
 }  // namespace la

@@ -5,8 +5,6 @@
 #include <functional>
 #include <map>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include <Eigen/Dense>
@@ -38,6 +36,13 @@ constexpr int kFitIterations = 8;
 // A G2 chain from stage 7 replaces one with curvature gaps unless it strays further than
 // this many times that chain's largest deviation (and the tolerance).
 constexpr double kG2Preference = 2.0;
+// Stage 7 selects its segments for this much inside the tolerance: its model (~1e-6 of
+// a segment's length) and the move onto a corner (below) shift the exact chain a little.
+constexpr double kSelectionMargin = 0.01;
+// Stage 7's chain is moved onto its corner by a similarity where that moves no point by
+// more than this fraction of the tolerance, else by stage 6's joint rotation, which
+// fails on nearly straight segments (see snapToJoints).
+constexpr double kSnapReach = 0.1;
 // A step longer than this many median steps is a gap the fit fills (fillGaps).
 constexpr double kGapSteps = 10.0;
 constexpr int kAlphaBisections = 12;
@@ -897,7 +902,7 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
                 const FitOptions& options) {
   if (!fit.spline) return;  // a straight part
   SelectionOptions so;
-  so.tolerance = tol;
+  so.tolerance = (1.0 - kSelectionMargin) * tol;
   ChainFitOptions& co = so.fit;
   co.min_alpha = options.min_alpha;
   co.max_alpha = options.max_alpha;
@@ -926,7 +931,7 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     g2.method = options.g2;
     g2.threshold = options.g2_threshold;
     g2.diagonal = diag;
-    segments = snapToJoints(segments, co.closed, part.points.back(), g2);
+    segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
   if (polished.max_distance > tol) {

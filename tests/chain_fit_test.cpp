@@ -188,10 +188,11 @@ TEST(ChainFit, FixedEndsStay) {
   ASSERT_TRUE(r.improved) << r.report.message;
   EXPECT_EQ(r.segments[0].start(), Vec2(0, 0));
   EXPECT_LT((r.segments.back().end() - points.back()).norm(), 1e-6);
-  const std::vector<LaSegment> snapped = snapToJoints(r.segments, false, points.back(), {});
+  // (as the pipeline snaps it: by the similarity, moving no point by more than 1e-6)
+  const std::vector<LaSegment> snapped = snapToJoints(r.segments, false, points.back(), {}, 1e-6);
   ASSERT_EQ(snapped.size(), 2u);
   EXPECT_LT((snapped.back().end() - points.back()).norm(), 1e-9);
-  expectG2(snapped, 1e-6);
+  expectG2(snapped, 1e-12);
   EXPECT_NEAR(snapped[0].alpha(), 0.5, 1e-3);
   EXPECT_LT(maxDistance(snapped, points), 1e-5);
 }
@@ -209,6 +210,44 @@ TEST(ChainFit, KeepsAJointFlatterThanItsFloor) {
   ASSERT_EQ(r.segments.size(), 2u) << r.report.message;
   EXPECT_LT(r.max_distance, 1e-5 * 120.0);
   EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 120.0);
+}
+
+// The same for a segment running into an inflection with alpha -0.05, steeper than the
+// cap the fit keeps zero-end segments under (kInflectionAlphaCap): started from the
+// truth, it must stay on the points, not be clamped to the cap first.
+TEST(ChainFit, KeepsAZeroEndLawSteeperThanItsCap) {
+  ASSERT_GT(-0.05, kInflectionAlphaCap);
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.3, 0.02, {{1.0, 60.0, 0.01}, {-0.05, 80.0, 0.0}});
+  const std::vector<Vec2> points = sampleChain(truth, 150, 0.0, 6);
+  const ChainFitResult r = fitChain(truth, points, {});
+  ASSERT_EQ(r.segments.size(), 2u) << r.report.message;
+  EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 140.0);
+}
+
+// A chain whose nearly straight last segment misses its corner sideways, snapped by the
+// similarity about its start: end exact, G2 and alphas exactly kept, and no point of
+// it moved further than `reach`; with half that reach it is not used.
+TEST(ChainFit, SnapsAnEndBySimilarityWithinReach) {
+  const std::vector<LaSegment> chain = buildChain({0, 0}, 0.0, 0.02, {{0.5, 60.0, 0.0005}, {1.0, 40.0, 0.0004}});
+  const Vec2 end = chain.back().end();
+  const Vec2 normal(-std::sin(chain.back().theta(40.0)), std::cos(chain.back().theta(40.0)));
+  const Vec2 corner = end + 0.05 * normal;
+  const double reach = 0.05 * 100.0 / (end - chain.front().start()).norm() * 1.001;  // the bound for a 100-unit chain
+  const std::vector<LaSegment> snapped = snapToJoints(chain, false, corner, {}, reach);
+  ASSERT_EQ(snapped.size(), 2u);
+  EXPECT_LT((snapped.back().end() - corner).norm(), 1e-9);
+  EXPECT_EQ(snapped.front().start(), chain.front().start());
+  expectG2(snapped, 1e-12);
+  double moved = 0.0;
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(snapped[i].alpha(), chain[i].alpha());
+    for (int k = 0; k <= 100; ++k)
+      moved = std::max(moved, (snapped[i].position(snapped[i].length() * k / 100) - chain[i].position(chain[i].length() * k / 100)).norm());
+  }
+  EXPECT_LE(moved, reach);
+  EXPECT_GT(moved, 0.5 * reach);  // the bound is not loose by more than that here
+  const std::vector<LaSegment> other = snapToJoints(chain, false, corner, {}, 0.5 * reach);
+  if (!other.empty()) EXPECT_GT(std::abs(other[0].kappaEnd() - other[1].kappaStart()), 0.0) << "not by makeG2";
 }
 
 // A closed chain (an oval of four segments, G2 all round) fitted from a wrong start:
