@@ -50,6 +50,9 @@ constexpr double kSeriesLimit = 1e-4;
 // nodes per segment of the polyline that gives the first feet when none are passed.
 constexpr int kFootSteps = 1, kFirstFootSteps = 3, kFinalFootSteps = 1;
 constexpr int kCoarseFeetSamples = 64;
+// A point further than this many times the root mean square distance has its foot
+// looked for again over the whole chain (refineOutlyingFeet).
+constexpr double kOutlyingFoot = 3.0;
 // Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
 constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0, kMaxLambda = 1e10;
 // Weight of a constraint violation (squared) in the merit function that accepts steps:
@@ -397,6 +400,35 @@ std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2
       if (const double d = (p - points[k]).squaredNorm(); d < best) best = d, feet[k] = f;
   }
   return feet;
+}
+
+// Feet of the points whose distance is an outlier (more than kOutlyingFoot times the
+// root mean square), found again from the nearest coarse node: a foot carried over from
+// an edited chain or a rough start can sit on a far part of the chain, where Newton
+// settles on a local closest point. `distance` (of the points at their feet) is updated.
+// With `pinned_ends`, the first and last points keep theirs (an open chain's ends).
+void refineOutlyingFeet(const ChainGeometry& g, const std::vector<Vec2>& points, std::vector<ChainFoot>& feet,
+                        std::vector<double>& distance, bool pinned_ends = false) {
+  double ssq = 0.0;
+  for (double d : distance) ssq += d * d;
+  const double limit = kOutlyingFoot * std::sqrt(ssq / static_cast<double>(distance.size()));
+  std::vector<Vec2> far;
+  std::vector<std::size_t> which;
+  for (std::size_t k = pinned_ends ? 1 : 0; k + (pinned_ends ? 1 : 0) < points.size(); ++k)
+    if (distance[k] > limit) {
+      far.push_back(points[k]);
+      which.push_back(k);
+    }
+  if (far.empty()) return;
+  const std::vector<ChainFoot> fresh = coarseFeet(g, far);
+  for (std::size_t j = 0; j < far.size(); ++j) {
+    ChainFoot foot = fresh[j];
+    const double d = (projectFoot(g, far[j], foot, kFirstFootSteps).point - far[j]).norm();
+    if (d < distance[which[j]]) {
+      distance[which[j]] = d;
+      feet[which[j]] = foot;
+    }
+  }
 }
 
 // Where the unknowns sit in the parameter vector, and their bounds.
@@ -864,17 +896,20 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   for (std::size_t k = 0; k < used_count; ++k) pick.push_back(used_count == m ? k : k * (m - 1) / (used_count - 1));
   std::vector<Vec2> used_points;
   std::vector<ChainFoot> used_feet;
+  std::vector<double> used_distance;
   for (std::size_t k : pick) {
     used_points.push_back(points[k]);
     used_feet.push_back(feet[k]);
     // the given feet may be rough (from the spline's parameters, or an edited chain's)
-    projectFoot(model, points[k], used_feet.back(), kFirstFootSteps);
+    used_distance.push_back((projectFoot(model, points[k], used_feet.back(), kFirstFootSteps).point - points[k]).norm());
   }
+  refineOutlyingFeet(model, used_points, used_feet, used_distance, !options.closed);
   const ChainProblem used(layout, used_points);
   std::vector<FootFrame> frames;
   Eigen::VectorXd r, c;
   used.evaluate(model, used_feet, frames, r, c);
-  const auto data = static_cast<Eigen::Index>(used_points.size());
+  // (with an open chain's end rows: a pinned end point's distance is along the tangent too)
+  const auto data = static_cast<Eigen::Index>(used_points.size() + used.ends());
   const double ssr_before = r.head(data).squaredNorm();
   const bool admissible_before = c.size() == 0 || c.norm() <= kAdmissible;  // the start meets the constraints
 
@@ -944,8 +979,10 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     for (std::size_t k = 0; k < m; ++k) {
       const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
       const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps);
-      result.distance[k] = (f.point - points[k]).norm() * scale;
+      result.distance[k] = (f.point - points[k]).norm();
     }
+    refineOutlyingFeet(model, points, feet, result.distance, !options.closed);
+    for (double& d : result.distance) d *= scale;
     result.segments = std::move(fitted);
     result.feet = std::move(feet);
     result.report = {status, iterations, std::sqrt(ssr_after / used_points.size()) * scale,
@@ -999,6 +1036,7 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
   distance.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k)
     distance[k] = (points[k] - projectFoot(g, points[k], feet[k], kFootSteps + 4).point).norm();
+  refineOutlyingFeet(g, points, feet, distance);
 }
 
 Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end) {

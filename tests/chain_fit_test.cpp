@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -248,6 +249,21 @@ TEST(ChainFit, SnapsAnEndBySimilarityWithinReach) {
   EXPECT_GT(moved, 0.5 * reach);  // the bound is not loose by more than that here
   const std::vector<LaSegment> other = snapToJoints(chain, false, corner, {}, 0.5 * reach);
   if (!other.empty()) EXPECT_GT(std::abs(other[0].kappaEnd() - other[1].kappaStart()), 0.0) << "not by makeG2";
+}
+
+// Feet handed in wrong (every point's foot at the middle of the first segment, as an
+// edit can leave them): the distances the fit reports are still every point's distance
+// to its chain (each point's foot is found again where it lies far off).
+TEST(ChainFit, ReportsTrueDistancesFromWrongFeet) {
+  const std::vector<LaSegment> truth =
+      buildChain({0, 0}, 0.2, 0.01, {{1.0, 80.0, 0.03}, {-1.0, 60.0, 0.0}, {-1.5, 70.0, -0.02}, {0.5, 60.0, -0.01}});
+  const std::vector<Vec2> points = sampleChain(truth, 60, 0.05, 8);
+  const std::vector<ChainFoot> wrong(points.size(), ChainFoot{0, 0.5});
+  const ChainFitResult r = fitChain(truth, points, wrong);
+  ASSERT_EQ(r.distance.size(), points.size()) << r.report.message;
+  const double reported = *std::max_element(r.distance.begin(), r.distance.end());
+  EXPECT_NEAR(reported, maxDistance(r.segments, points), 1e-6) << r.report.message;
+  EXPECT_LT(reported, 0.3);  // the noise is 0.05
 }
 
 // A closed chain (an oval of four segments, G2 all round) fitted from a wrong start:
