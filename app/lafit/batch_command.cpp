@@ -31,6 +31,12 @@ subfolders) and writes OUTDIR/<name>.json for each, keeping the folder structure
   --svg           also write OUTDIR/<name>.svg
   --jobs N        parallel jobs (default: all cores)
 
+A file that cannot be read is reported in the summary and skipped; the others are
+still fitted and written.
+
+exit status: 0 every file and stroke fitted, 1 some file could not be read or some
+stroke could not be fitted (the summary says which), 2 usage error
+
 )";
 
 bool isInput(const fs::path& p) {

@@ -25,6 +25,13 @@ outputs:
   --csv FILE.csv  samples x,y,s,theta,kappa (a blank line between curves)
   --dxf FILE.dxf  one SPLINE per curve
 
+A stroke that cannot be fitted (a dot, a straight line) gets {"error": "why"} in the
+JSON and the others are still fitted; if none can be, no output file is written (an
+existing one is left as it was). Every output is replaced atomically.
+
+exit status: 0 every stroke fitted, 1 the input could not be read or a stroke could
+not be fitted (message on stderr), 2 usage error
+
 )";
 
 void printFigures(const FileFit& fit) {
@@ -60,6 +67,13 @@ int fitCommand(const std::vector<std::string>& argv) {
   const FitOptions options = fitOptionsFrom(args);
   const FileFit fit = fitFile(args.positional()[0], options, args.has("--stages"));
   printFigures(fit);
+  for (const std::string& error : fit.errors)
+    if (!error.empty()) std::cerr << "lafit fit: " << error << "\n";
+  // Nothing fitted is a failed run: it must not replace an earlier run's outputs.
+  if (fit.failed() == static_cast<int>(fit.strokes.size())) {
+    std::cerr << "lafit fit: no stroke could be fitted; no output written\n";
+    return 1;
+  }
   writeOutputs(args, fit.document, fit.curves(), fit.points());
   return fit.failed() > 0 ? 1 : 0;
 }

@@ -17,7 +17,8 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
   --tolerance F        max distance from the points, as a fraction of the stroke's
                        bounding-box diagonal (default 0.005)
   --tolerance-abs D    max distance in the input's units (overrides --tolerance)
-  --max-extrema N      keep at most N curvature extrema (simplification; default: all significant)
+  --max-extrema N      keep at most N curvature extrema in each smooth part of a stroke
+                       (between two corners; simplification; default: all significant)
   --significance S     curvature extrema whose pair differs by less than S times the
                        largest |curvature| are noise (default 0.2)
   --g2 METHOD          newton (default: all joints at once), bisection (the paper's
