@@ -546,7 +546,8 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
 // The points of the problem with their feet and residuals.
 class ChainProblem {
  public:
-  ChainProblem(const Layout& layout, const std::vector<Vec2>& points) : layout_(layout), points_(points) {}
+  ChainProblem(const Layout& layout, const std::vector<Vec2>& points, const std::vector<double>& weights)
+      : layout_(layout), points_(points), weights_(weights) {}
 
   // One row per point (its tangent distance), for an open chain the tangential
   // components of its two end points (pinned to the chain's ends), and one per segment
@@ -570,13 +571,13 @@ class ChainProblem {
     }
     r.resize(static_cast<Eigen::Index>(rows()));
     for (std::size_t k = 0; k < n_points; ++k)
-      r[static_cast<Eigen::Index>(k)] = frames[k].normal().dot(frames[k].point - points_[k]);
+      r[static_cast<Eigen::Index>(k)] = weights_[k] * frames[k].normal().dot(frames[k].point - points_[k]);
     if (!layout_.closed) {
       const std::size_t last = n_points - 1;
       r[static_cast<Eigen::Index>(n_points)] =
-          layout_.fix_start ? 0.0 : frames[0].tangent.dot(frames[0].point - points_[0]);
+          layout_.fix_start ? 0.0 : weights_[0] * frames[0].tangent.dot(frames[0].point - points_[0]);
       r[static_cast<Eigen::Index>(n_points + 1)] =
-          layout_.fix_end ? 0.0 : frames[last].tangent.dot(frames[last].point - points_[last]);
+          layout_.fix_end ? 0.0 : weights_[last] * frames[last].tangent.dot(frames[last].point - points_[last]);
     }
     for (std::size_t i = 0; i < layout_.segments; ++i)
       r[static_cast<Eigen::Index>(n_points + ends() + i)] = layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
@@ -594,7 +595,8 @@ class ChainProblem {
                 Jacobian& j, Eigen::MatrixXd& cj) const {
     const std::size_t n_points = points_.size();
     j.setZero(static_cast<Eigen::Index>(rows()), layout_.size);
-    auto add = [&](Eigen::Index row, std::size_t k, const Vec2& direction) {
+    auto add = [&](Eigen::Index row, std::size_t k, const Vec2& unweighted) {
+      const Vec2 direction = weights_[k] * unweighted;
       const ChainFoot& f = feet[k];
       const Panels<Jet>& p = m.jets[f.segment];
       Jet px, py;
@@ -630,6 +632,7 @@ class ChainProblem {
  private:
   const Layout& layout_;
   const std::vector<Vec2>& points_;
+  const std::vector<double>& weights_;
 };
 
 // The damped, bound- and equality-constrained Gauss-Newton model: unknowns at a bound
@@ -805,6 +808,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   };
   if (n == 0 || all_points.size() < 3) return refuse("no chain or too few points");
   if (!initial_feet.empty() && initial_feet.size() != all_points.size()) return refuse("feet and points differ in count");
+  if (!options.weights.empty() && options.weights.size() != all_points.size()) return refuse("weights and points differ in count");
 
   // Normalized frame: the chain's start at the origin, unit bounding-box diagonal.
   const Vec2 origin = initial.front().start();
@@ -904,7 +908,9 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     used_distance.push_back((projectFoot(model, points[k], used_feet.back(), kFirstFootSteps).point - points[k]).norm());
   }
   refineOutlyingFeet(model, used_points, used_feet, used_distance, !options.closed);
-  const ChainProblem used(layout, used_points);
+  std::vector<double> used_weights;
+  for (std::size_t k : pick) used_weights.push_back(options.weights.empty() ? 1.0 : options.weights[k]);
+  const ChainProblem used(layout, used_points, used_weights);
   std::vector<FootFrame> frames;
   Eigen::VectorXd r, c;
   used.evaluate(model, used_feet, frames, r, c);

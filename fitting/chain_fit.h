@@ -79,6 +79,10 @@ struct ChainFitOptions {
   /// solver crawls along a flat valley: the maximum a posteriori estimate.
   double noise = 0.0;
   double alpha_prior = 0.5, alpha_spread = 2.0;
+  /// Per point, the weight of its residual (empty: all 1). Raising the weights of the
+  /// points furthest off moves the least-squares fit towards the smallest largest
+  /// distance (Lawson's iteration); the distances reported stay unweighted.
+  std::vector<double> weights;
 };
 
 struct ChainFitResult {

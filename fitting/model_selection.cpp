@@ -224,9 +224,28 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       }
     }
   };
+  // Least squares minimizes the sum of squares; a chain of the same segments that keeps
+  // every point within the tolerance may still exist where it leaves a few outside.
+  // Lawson's iteration looks for it: each round multiplies every point's weight by its
+  // distance over the tolerance (where above 1) and fits again from the current chain,
+  // kept while the largest distance falls. Tried before any segment is added.
+  auto reweigh = [&] {
+    std::vector<double> weights(points.size(), 1.0);
+    for (int round = 0; round < options.reweighing_rounds && out.fit.max_distance > options.tolerance; ++round) {
+      for (std::size_t k = 0; k < weights.size(); ++k)
+        weights[k] *= std::max(1.0, out.fit.distance[k] / options.tolerance);
+      ChainFitOptions weighted = options.fit;
+      weighted.weights = weights;
+      const ChainFitResult r = fitChain(out.fit.segments, points, out.fit.feet, weighted);
+      if (!r.improved || !(r.max_distance < out.fit.max_distance)) break;
+      out.fit = r;
+    }
+  };
   simplify(true);
   // Splits while some point is out of tolerance (and the split helps).
   while (edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
+    reweigh();
+    if (out.fit.max_distance <= options.tolerance) break;
     const std::size_t worst =
         std::max_element(out.fit.distance.begin(), out.fit.distance.end()) - out.fit.distance.begin();
     const ChainFoot at = out.fit.feet[worst];

@@ -266,6 +266,30 @@ TEST(ChainFit, ReportsTrueDistancesFromWrongFeet) {
   EXPECT_LT(reported, 0.3);  // the noise is 0.05
 }
 
+// Per-point weights: all 1 is the plain fit; raising the weights of the points furthest
+// off (Lawson's rounds, as model selection does) lowers the largest distance of a
+// chain that cannot pass through every point (one segment for two laws' points).
+TEST(ChainFit, WeightsLowerTheLargestDistance) {
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.0, 0.01, {{1.0, 80.0, 0.02}, {-1.0, 80.0, 0.01}});
+  const std::vector<Vec2> points = sampleChain(truth, 60, 0.0, 9);
+  const std::vector<LaSegment> one = {LaSegment(0.5, 160.0, {0, 0}, 0.0, 0.01, 0.012)};
+  const ChainFitResult plain = fitChain(one, points, {});
+  ASSERT_TRUE(plain.improved) << plain.report.message;
+  ChainFitOptions options;
+  options.weights.assign(points.size(), 1.0);
+  const ChainFitResult ones = fitChain(one, points, {}, options);
+  EXPECT_NEAR(ones.max_distance, plain.max_distance, 1e-12);
+  ChainFitResult r = plain;
+  const double target = 0.5 * plain.max_distance;
+  for (int round = 0; round < 3; ++round) {
+    for (std::size_t k = 0; k < points.size(); ++k) options.weights[k] *= std::max(1.0, r.distance[k] / target);
+    r = fitChain(r.segments, points, r.feet, options);
+    ASSERT_TRUE(r.report.usable()) << r.report.message;
+  }
+  EXPECT_LT(r.max_distance, 0.9 * plain.max_distance);
+  EXPECT_NEAR(r.max_distance, maxDistance(r.segments, points), 1e-6);
+}
+
 // A closed chain (an oval of four segments, G2 all round) fitted from a wrong start:
 // closure and G2 at the seam after snapToJoints, and back on the points.
 TEST(ChainFit, ClosedChainClosesG2) {
