@@ -5,9 +5,10 @@
 // have; a curvature extremum flattened by the smoothing goes missing. After the chain is
 // fitted to the points (fitting/chain_fit.h), this stage edits it and fits again:
 //
-//  - split: while some point is further than the tolerance, the segment holding the
-//    worst one is cut at that point's foot (an LA segment's sub-pieces are LA segments
-//    of the same alpha, so the cut itself changes nothing);
+//  - split: while some point is further than the tolerance (also after a few rounds of
+//    Lawson's reweighting towards the smallest largest distance), the segment holding
+//    the worst one is cut at that point's foot (an LA segment's sub-pieces are LA
+//    segments of the same alpha, so the cut itself changes nothing);
 //  - collapse: a segment that turns by almost nothing (noise across an inflection, or a
 //    sliver at a stroke's end) is removed, its neighbours meeting at one joint;
 //  - merge: two segments whose joint is a weak curvature extremum or none at all (the
