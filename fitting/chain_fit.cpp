@@ -67,6 +67,9 @@ constexpr double kRestored = 1e-12;
 // A chain meets its constraints (joints, closure, a fixed end) below this violation
 // (normalized units); snapToJoints closes what is left exactly.
 constexpr double kAdmissible = 1e-7;
+// snapToJoints takes a chain as ending where it should, or a closed one as closed, when
+// the gaps (position, fraction of its length; tangent, radians) are below this.
+constexpr double kClosed = 1e-10;
 
 inline double valueOf(double x) { return x; }
 inline double valueOf(const Jet& x) { return x.a; }
@@ -944,24 +947,67 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.
   std::vector<LaSegment> fitted;
-  try {
-    Vec2 start = origin + scale * model.start[0];
-    double theta = model.angle[0];
+  auto build = [&](const ChainModel& mm, const Eigen::VectorXd& xx) {
+    std::vector<LaSegment> chain;
+    Vec2 start = origin + scale * mm.start[0];
+    double theta = mm.angle[0];
     for (std::size_t i = 0; i < n; ++i) {
-      const Law& law = model.laws[i];
-      const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : x[layout.kappa[i]] / scale;
-      const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : x[layout.kappa[i + 1]] / scale;
-      fitted.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
-      start = fitted.back().end();
-      theta = fitted.back().theta(fitted.back().length());
+      const Law& law = mm.laws[i];
+      const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : xx[layout.kappa[i]] / scale;
+      const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : xx[layout.kappa[i + 1]] / scale;
+      chain.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
+      start = chain.back().end();
+      theta = chain.back().theta(chain.back().length());
+    }
+    return chain;
+  };
+  // The constraints on that exact chain (normalized units). The model is within ~1e-6 of
+  // a segment's length of it, so the model's closure leaves the exact chain open by
+  // that much: Newton steps on the exact values (the model's Jacobian) close it.
+  auto exactConstraints = [&](const std::vector<LaSegment>& chain) {
+    const Vec2 end = (chain.back().end() - origin) / scale;
+    Eigen::VectorXd value(layout.constraints());
+    if (layout.closed) {
+      double turning = 0.0;
+      for (const LaSegment& seg : chain) turning += seg.turning();
+      value << end - (chain.front().start() - origin) / scale, turning - layout.total_turning;
+    } else if (layout.fix_end) {
+      value << end - layout.end_point;
+    }
+    return value;
+  };
+  auto constraintJacobian = [&](const ChainModel& mm) -> Eigen::MatrixXd {
+    if (layout.closed) return mm.pose_jacobian[n] - mm.pose_jacobian[0];
+    return mm.pose_jacobian[n].topRows(2);
+  };
+  Eigen::VectorXd exact;
+  bool closed_exactly = false;  // the model moved: its residuals are evaluated again
+  try {
+    fitted = build(model, x);
+    exact = exactConstraints(fitted);
+    for (int k = 0; k < kRestoreSteps && exact.size() > 0 && exact.norm() > kRestored; ++k) {
+      const Eigen::MatrixXd cjac = constraintJacobian(model);
+      const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-exact);
+      const Eigen::VectorXd moved = (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+      ChainModel trial;
+      if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
+      std::vector<LaSegment> closer = build(trial, moved);
+      const Eigen::VectorXd closer_exact = exactConstraints(closer);
+      if (!(closer_exact.norm() < exact.norm())) break;
+      x = moved;
+      std::swap(model, trial);
+      fitted = std::move(closer);
+      exact = closer_exact;
+      closed_exactly = true;
     }
   } catch (const std::invalid_argument& e) {
     result.report = {SolveStatus::kBadInput, iterations, INFINITY, std::string("chain fit: ") + e.what()};
     return result;
   }
+  if (closed_exactly) used.evaluate(model, used_feet, frames, r, c);
   const double ssr_after = r.head(data).squaredNorm();
   // Better: closer to the points, or meeting constraints the start did not meet.
-  const bool admissible = c.size() == 0 || c.norm() <= kAdmissible;
+  const bool admissible = exact.size() == 0 || exact.norm() <= kAdmissible;
   result.improved = admissible && (ssr_after < ssr_before || !admissible_before);
   if (!result.improved) {
     result.report = {SolveStatus::kConverged, iterations, std::sqrt(ssr_before / used_points.size()) * scale,
@@ -1071,6 +1117,15 @@ Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const
 
 std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
                                     const G2Options& options, double reach) {
+  if (!segments.empty()) {
+    // A chain that ends there already (the fit closes its exact chain to rounding) stays.
+    const LaSegment &first = segments.front(), &last = segments.back();
+    double length = 0.0;
+    for (const LaSegment& s : segments) length += s.length();
+    const bool at_end = (last.end() - end).norm() <= kClosed * length;
+    const bool smooth = !closed || std::abs(wrapAngle(last.theta(last.length()) - first.theta0())) <= kClosed;
+    if (at_end && smooth && (!closed || (end - first.start()).norm() <= kClosed * length)) return segments;
+  }
   if (!closed && !segments.empty()) {
     // The similarity about the start that takes the chain's end onto `end`. It moves a
     // point by the end's miss times the point's distance from the start over the end's,

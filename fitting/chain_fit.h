@@ -29,7 +29,8 @@
 // point. A weak prior on each alpha (ChainFitOptions::noise) keeps alphas the points do
 // not determine from wandering. A fixed end (a part that ends at a corner) and a closed
 // chain's closure (end point and tangent back at the start) are equality constraints,
-// met to ~1e-12 of the diagonal; snapToJoints (below) closes them exactly.
+// met on the exact chain (LaSegment positions) to rounding where a few Newton steps get
+// there; snapToJoints (below) closes what is left.
 //
 // Evaluation. theta(u) and kappa(u) of a segment have closed forms (written with
 // expm1/log1p so that alpha = 0, alpha = 1 and the circle are ordinary points),
@@ -104,8 +105,9 @@ struct ChainFitResult {
 /// position, tangent and curvature) to `points`, given in order along it (a closed
 /// chain's points start anywhere). `feet`, if not empty, are the points' feet on
 /// `initial` (one per point); otherwise they are found from scratch. A chain it cannot
-/// take comes back unchanged with kBadInput. For fix_end and closed chains the result
-/// closes only to the penalty's ~1e-9: pass it through snapToJoints.
+/// take comes back unchanged with kBadInput. A fix_end or closed chain comes back closed
+/// to rounding where a few Newton steps on its exact (LaSegment) geometry get there;
+/// pass it through snapToJoints, which closes what is left.
 ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& points,
                         const std::vector<ChainFoot>& feet, const ChainFitOptions& options = {});
 
@@ -119,7 +121,8 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
 /// or the start again for a closed chain).
 Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end);
 
-/// Makes a nearly closed or nearly corner-ended chain exact. An open chain is scaled and
+/// Makes a nearly closed or nearly corner-ended chain exact. One that is, to 1e-10 of its
+/// length (and in tangent, closed), comes back as it is. An open chain is scaled and
 /// rotated about its start until its end is at `end`, if that moves no point of it by
 /// more than `reach` (G2 and alphas kept exactly). Otherwise, and for a closed chain:
 /// joints where the segments start (the last one at `end`), tangents and alphas kept,

@@ -307,7 +307,13 @@ TEST(ChainFit, ClosedChainClosesG2) {
   options.closed = true;
   const ChainFitResult r = fitChain(start, points, {}, options);
   ASSERT_TRUE(r.improved) << r.report.message;
+  // The fit closes the exact chain itself (position and tangent at the seam); the snap
+  // then leaves it as it is.
+  const LaSegment& last = r.segments.back();
+  EXPECT_LT((last.end() - r.segments.front().start()).norm(), 1e-10 * length);
+  EXPECT_LT(std::abs(std::remainder(last.theta(last.length()) - r.segments.front().theta0(), 2.0 * std::numbers::pi)), 1e-10);
   const std::vector<LaSegment> closed = snapToJoints(r.segments, true, r.segments.front().start(), {});
+  for (std::size_t i = 0; i < closed.size() && i < 4; ++i) EXPECT_EQ(closed[i].length(), r.segments[i].length());
   ASSERT_EQ(closed.size(), 4u);
   expectG2(closed, 1e-6);
   EXPECT_LT((closed.back().end() - closed.front().start()).norm(), 1e-9 * length);
