@@ -699,5 +699,25 @@ TEST_F(LafitCli, BatchOfGoodFilesExitsZero) {
   EXPECT_TRUE(contains(r.out, "2 files: 2 fitted, 0 unreadable")) << r;
 }
 
+// Inputs that differ only in their extension keep it in their outputs' names (one
+// output each, none overwriting another); an OUTDIR inside DIR is not read back as
+// input, the second run no more than the first; OUTDIR = DIR is a usage error.
+TEST_F(LafitCli, BatchKeepsEveryOutputApartAndNeverReadsItsOwn) {
+  copyData("strokes/dollar1_unistroke_s01_pilot/csv/medium/v.csv", "in/a.csv");
+  copyData("strokes/dollar1_unistroke_s01_pilot/csv/slow/x.csv", "in/a.txt");
+  copyData("curves/airfoils/clark-y.dat", "in/sub/b.dat");
+  for (int run = 0; run < 2; ++run) {
+    const Outcome r = lafit({"batch", "in", "-o", "in/out", "--recursive"});
+    EXPECT_EQ(r.status, 0) << "run " << run << "\n" << r;
+    EXPECT_TRUE(contains(r.out, "3 files: 3 fitted, 0 unreadable")) << "run " << run << "\n" << r;
+  }
+  EXPECT_EQ(listing(at("in/out")), (std::set<std::string>{"a.csv.json", "a.txt.json", "sub", "sub/b.json"}));
+  expectFittedCurves(curvesOf(readJson("in/out/a.csv.json")), 2);
+  expectFittedCurves(curvesOf(readJson("in/out/a.txt.json")), 2);
+  const Outcome same = lafit({"batch", "in", "-o", "in"});
+  EXPECT_EQ(same.status, kExitUsage) << same;
+  EXPECT_TRUE(contains(same.err, "OUTDIR")) << same;
+}
+
 }  // namespace
 }  // namespace la

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -24,7 +25,10 @@ namespace fs = std::filesystem;
 constexpr const char* kHelp = R"(usage: lafit batch DIR -o OUTDIR [options]
 
 Fits every input file in DIR (.csv .txt .dat .json .svg; with --recursive also in its
-subfolders) and writes OUTDIR/<name>.json for each, keeping the folder structure.
+subfolders, leaving out OUTDIR if it is one) and writes OUTDIR/<name>.json for each,
+keeping the folder structure. Inputs that differ only in their extension (a.csv and
+a.json) keep it in their output's name (a.csv.json, a.json.json). OUTDIR must not be
+DIR itself.
 
   -o OUTDIR       output folder (created if missing)
   --recursive     descend into subfolders
@@ -69,16 +73,36 @@ int batchCommand(const std::vector<std::string>& argv) {
   if (!fs::is_directory(in_dir)) throw std::runtime_error(in_dir.string() + ": not a folder");
   const FitOptions options = fitOptionsFrom(args);
 
+  // OUTDIR beside the inputs would mix the curves with them (a run after would read them
+  // back); inside DIR it is left out of the scan.
+  const fs::path in_abs = fs::weakly_canonical(in_dir), out_abs = fs::weakly_canonical(*out_dir);
+  if (in_abs == out_abs) throw UsageError("-o OUTDIR must not be the input folder itself");
+  auto inOutDir = [&](const fs::path& p) {
+    const fs::path rel = fs::weakly_canonical(p).lexically_relative(out_abs);
+    return !rel.empty() && *rel.begin() != "..";
+  };
   std::vector<fs::path> files;
   if (args.has("--recursive")) {
-    for (const auto& e : fs::recursive_directory_iterator(in_dir))
-      if (e.is_regular_file() && isInput(e.path())) files.push_back(e.path());
+    for (auto it = fs::recursive_directory_iterator(in_dir); it != fs::recursive_directory_iterator(); ++it) {
+      if (it->is_directory() && fs::weakly_canonical(it->path()) == out_abs) it.disable_recursion_pending();
+      else if (it->is_regular_file() && isInput(it->path()) && !inOutDir(it->path())) files.push_back(it->path());
+    }
   } else {
     for (const auto& e : fs::directory_iterator(in_dir))
       if (e.is_regular_file() && isInput(e.path())) files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
   if (files.empty()) throw std::runtime_error(in_dir.string() + ": no input files (.csv .txt .dat .json .svg)");
+  // Each input's curves go to OUTDIR/<its path>.json; inputs that would share one (a.csv
+  // and a.json) keep their extension in it (a.csv.json, a.json.json).
+  std::map<fs::path, int> users;
+  for (const fs::path& f : files) ++users[fs::relative(f, in_dir).replace_extension()];
+  auto outputOf = [&](const fs::path& file, const char* extension) {
+    fs::path rel = fs::relative(file, in_dir);
+    if (users[fs::path(rel).replace_extension()] > 1) rel += extension;
+    else rel.replace_extension(extension);
+    return fs::path(*out_dir) / rel;
+  };
 
   std::vector<Row> rows(files.size());
   std::atomic<std::size_t> next{0}, done{0};
@@ -93,10 +117,10 @@ int batchCommand(const std::vector<std::string>& argv) {
         const auto t0 = std::chrono::steady_clock::now();
         const FileFit fit = fitFile(files[i], options, args.has("--stages"));
         row.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        fs::path target = fs::path(*out_dir) / rel;
+        const fs::path target = outputOf(files[i], ".json");
         fs::create_directories(target.parent_path());
-        writeFileAtomically(target.replace_extension(".json"), fit.document.dump(2) + "\n");
-        if (args.has("--svg")) writeFileAtomically(target.replace_extension(".svg"), curvesToSvg(fit.curves(), fit.points()));
+        writeFileAtomically(target, fit.document.dump(2) + "\n");
+        if (args.has("--svg")) writeFileAtomically(outputOf(files[i], ".svg"), curvesToSvg(fit.curves(), fit.points()));
         row.strokes = static_cast<int>(fit.strokes.size());
         row.failed = fit.failed();
         for (const auto& r : fit.results) {
