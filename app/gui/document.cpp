@@ -79,6 +79,7 @@ std::string Document::editStroke(std::size_t stroke, Edit&& edit, Remember&& rem
   std::optional<FitResult> edited = edit(*s.fit, &why);
   if (!edited) return why;
   s.fit = std::move(edited);
+  s.provisional = false;  // the user works on this fit now: a background one would undo it
   remember(s);
   return {};
 }
@@ -113,10 +114,38 @@ std::size_t Document::addStroke(const Stroke& raw) {
   return strokes_.size() - 1;
 }
 
-void Document::insertStroke(std::size_t index, const Stroke& raw) {
+void Document::insertStroke(std::size_t index, const Stroke& raw, bool provisional) {
   DocumentStroke s{raw, std::nullopt, {}, {}, {}, {}};
-  fit(s);
+  s.id = next_id_++;
+  s.provisional = provisional && options_.polish && options_.g2 != G2Method::kOff;
+  if (s.provisional) {
+    FitOptions quick = options_;
+    quick.polish = false;
+    try {
+      s.fit = fitStroke(raw, quick);
+    } catch (const StrokeError& e) {  // nothing to complete: the full fit refuses it too
+      s.error = e.what();
+      s.provisional = false;
+    }
+  } else {
+    fit(s);
+  }
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
+}
+
+bool Document::completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit,
+                           const std::string& error) {
+  // (options are compared through their JSON form, which holds every one the app sets)
+  if (optionsToJson(options) != optionsToJson(options_)) return false;
+  for (DocumentStroke& s : strokes_) {
+    if (s.id != id) continue;
+    if (!s.provisional) return false;
+    s.fit = std::move(fit);
+    s.error = s.fit ? std::string() : error;
+    s.provisional = false;
+    return true;
+  }
+  return false;
 }
 
 void Document::removeStroke(std::size_t index) {
@@ -125,7 +154,10 @@ void Document::removeStroke(std::size_t index) {
 
 void Document::setOptions(const FitOptions& options) {
   options_ = options;
-  for (DocumentStroke& s : strokes_) fit(s);
+  for (DocumentStroke& s : strokes_) {
+    fit(s);
+    s.provisional = false;
+  }
 }
 
 void Document::clear() {
@@ -225,7 +257,10 @@ void Document::load(const QString& path) {
   options_ = options;
   strokes_ = std::move(loaded);
   constructions_ = std::move(constructions);
-  for (DocumentStroke& s : strokes_) fit(s);
+  for (DocumentStroke& s : strokes_) {
+    s.id = next_id_++;
+    fit(s);
+  }
 }
 
 }  // namespace la::gui

@@ -4,6 +4,7 @@
 // document file only needs strokes and options). No Qt widgets here.
 
 #include <QString>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -21,6 +22,10 @@ struct DocumentStroke {
   std::map<int, double> alpha_overrides;  // the user's alpha per segment, reapplied after each fit
   std::map<int, Vec2> joint_overrides;    // the user's position of joint i (segment i's start; n the end), likewise
   std::map<int, Vec2> apex_overrides;     // the user's control-triangle apex of a segment, likewise
+  /// Drawn strokes are fitted at once without stage 7 (provisional), then again with it
+  /// in the background (completeFit); `id` finds the stroke when that fit comes back.
+  std::uint64_t id = 0;
+  bool provisional = false;
 };
 
 class Document {
@@ -37,7 +42,14 @@ class Document {
   /// Adds a stroke and fits it; returns its index.
   std::size_t addStroke(const Stroke& raw);
   void removeStroke(std::size_t index);
-  void insertStroke(std::size_t index, const Stroke& raw);
+  /// Inserts and fits a stroke. `provisional`: where the options ask for stage 7, fits
+  /// without it (milliseconds: a pen-up must not wait) and marks the stroke provisional.
+  void insertStroke(std::size_t index, const Stroke& raw, bool provisional = false);
+  /// The full fit of provisional stroke `id` (fitStroke with `options`, or the
+  /// StrokeError's message), made in the background: taken if that stroke is still
+  /// there, still provisional (not edited since) and the options are the same. Returns
+  /// whether it was taken.
+  bool completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit, const std::string& error);
   void setOptions(const FitOptions& options);  // refits every stroke
   /// Gives a segment the user's alpha (kept across refits while the segmentation has
   /// the same number of pieces). Returns "" or why it cannot.
@@ -67,6 +79,7 @@ class Document {
   std::vector<DocumentStroke> strokes_;
   std::vector<Construction> constructions_;
   FitOptions options_;
+  std::uint64_t next_id_ = 1;
 };
 
 }  // namespace la::gui

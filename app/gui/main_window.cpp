@@ -20,6 +20,8 @@
 #include <QTimer>
 #include <QUndoCommand>
 #include <QUndoStack>
+#include <QtConcurrent/QtConcurrentRun>
+#include <algorithm>
 #include <functional>
 
 #include "app/gui/canvas.h"
@@ -48,7 +50,8 @@ class AddStrokeCommand : public QUndoCommand {
   AddStrokeCommand(MainWindow* w, Stroke s) : QUndoCommand("draw stroke"), m_window(w), m_stroke(std::move(s)) {}
   void redo() override {
     m_index = m_window->document().strokes().size();
-    m_window->document().insertStroke(m_index, m_stroke);
+    m_window->document().insertStroke(m_index, m_stroke, /*provisional=*/true);
+    m_window->fitInBackground(m_index);
     m_window->documentChanged();
   }
   void undo() override {
@@ -380,9 +383,47 @@ bool MainWindow::offerRecovery() {
   return true;
 }
 
-MainWindow::~MainWindow() { QFile::remove(autosavePath() + ".running"); }
+MainWindow::~MainWindow() {
+  for (auto* watcher : m_background) watcher->waitForFinished();  // (their threads hold copies only)
+  QFile::remove(autosavePath() + ".running");
+}
+
+void MainWindow::fitInBackground(std::size_t index) {
+  const DocumentStroke& s = m_document.strokes()[index];
+  if (!s.provisional) return;
+  auto* watcher = new QFutureWatcher<BackgroundFit>(this);
+  connect(watcher, &QFutureWatcher<BackgroundFit>::finished, this, [this, watcher] { takeBackgroundFit(watcher); });
+  m_background.push_back(watcher);
+  watcher->setFuture(QtConcurrent::run([raw = s.raw, id = s.id, options = m_document.options()] {
+    BackgroundFit out{id, options, std::nullopt, {}};
+    try {
+      out.fit = fitStroke(raw, options);
+    } catch (const std::exception& e) {
+      out.error = e.what();
+    }
+    return out;
+  }));
+}
+
+void MainWindow::takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher) {
+  const auto it = std::find(m_background.begin(), m_background.end(), watcher);
+  if (it == m_background.end()) return;  // taken already (finishBackgroundFits)
+  m_background.erase(it);
+  BackgroundFit done = watcher->result();
+  watcher->deleteLater();
+  if (m_document.completeFit(done.id, done.options, std::move(done.fit), done.error)) documentChanged();
+}
+
+void MainWindow::finishBackgroundFits() {
+  while (!m_background.empty()) {
+    QFutureWatcher<BackgroundFit>* watcher = m_background.front();
+    watcher->waitForFinished();
+    takeBackgroundFit(watcher);
+  }
+}
 
 bool MainWindow::exportPng(const QString& path) {
+  finishBackgroundFits();  // the curves as they end up, not the provisional ones
   const QPixmap canvas = m_canvas->grab(), plot = m_plot->grab(), lcg = m_lcg->grab();
   QImage out(canvas.width() + std::max(plot.width(), lcg.width()), std::max(canvas.height(), plot.height() + lcg.height()),
              QImage::Format_RGB32);
@@ -452,6 +493,7 @@ bool MainWindow::openFile(const QString& path) {
 }
 
 bool MainWindow::saveFile(const QString& path) {
+  finishBackgroundFits();  // the curves as they end up, not the provisional ones
   try {
     m_document.save(path);
   } catch (const std::exception& e) {
@@ -481,6 +523,7 @@ bool MainWindow::importPoints(const QString& path) {
 }
 
 bool MainWindow::exportFile(const QString& path, bool selected_only) {
+  finishBackgroundFits();  // the curves as they end up, not the provisional ones
   const bool only_construction = selected_only && m_selected_stroke < 0 && m_selected_construction >= 0;
   if (selected_only && m_selected_stroke < 0 && !only_construction) {
     showError("select a curve first (right-click it, or click a construction's handle)");

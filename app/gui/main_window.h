@@ -4,8 +4,10 @@
 // fitted stroke's figures. Every change of the document goes through the undo stack;
 // the document is autosaved so nothing drawn is lost.
 
+#include <QFutureWatcher>
 #include <QMainWindow>
 #include <QString>
+#include <vector>
 
 #include "app/gui/document.h"
 
@@ -60,8 +62,21 @@ class MainWindow : public QMainWindow {
   /// Replaces construction `index` by `after` as one undoable step (`before` is what undo restores).
   void editConstruction(int index, const Construction& before, const Construction& after, const QString& what);
   void showMessage(const QString& what);      // in the status bar
+  /// A drawn stroke shows its stages 1-6 fit at pen-up; stage 7 runs on a worker thread
+  /// and replaces it when done (a hard stroke takes a few hundred ms). This waits for
+  /// those still running and takes their results (saving, exporting and tests use it).
+  void finishBackgroundFits();
+  /// Starts stage 7 of provisional stroke `index` off the UI thread.
+  void fitInBackground(std::size_t index);
 
  private:
+  struct BackgroundFit {
+    std::uint64_t id = 0;
+    FitOptions options;
+    std::optional<FitResult> fit;
+    std::string error;
+  };
+  void takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher);
   void buildMenus();
   void showError(const QString& what);
   void autosave();
@@ -86,6 +101,7 @@ class MainWindow : public QMainWindow {
   QTimer* m_autosave = nullptr;
   QString m_path;
   bool m_dirty = false;
+  std::vector<QFutureWatcher<BackgroundFit>*> m_background;  // running, in start order
 };
 
 }  // namespace la::gui

@@ -63,7 +63,9 @@ class MainWindowTest : public ::testing::Test {
     window->show();
     ASSERT_TRUE(dir.isValid());
   }
+  // The last stroke's fit as it ends up (stage 7 done: it runs off the UI thread).
   const FitResult& lastFit() {
+    window->finishBackgroundFits();
     const auto& s = window->document().strokes();
     EXPECT_FALSE(s.empty());
     EXPECT_TRUE(s.back().fit.has_value()) << s.back().error;
@@ -80,6 +82,44 @@ TEST_F(MainWindowTest, MouseStrokeIsFittedG2) {
   EXPECT_GE(r.quality.segments, 1);
   EXPECT_LT(r.quality.g2_gap, 1e-6) << "curvature continuous at every joint";
   EXPECT_LE(r.quality.max_dev, r.tolerance * (1 + 1e-9));
+}
+
+// Pen-up shows stages 1-6 at once; stage 7 runs on a worker thread and replaces that
+// fit with exactly what fitStroke gives. A stroke undone, or edited by the user, before
+// it comes back keeps what the user did.
+TEST_F(MainWindowTest, PenUpFitsAtOnceAndStage7FollowsOffTheUiThread) {
+  drawWithMouse(window->canvas(), wave());
+  {
+    const DocumentStroke& s = window->document().strokes().back();
+    ASSERT_TRUE(s.fit.has_value()) << s.error;
+    EXPECT_TRUE(s.provisional) << "stage 7 is on by default: it must not run on the UI thread";
+  }
+  window->finishBackgroundFits();
+  const DocumentStroke& done = window->document().strokes().back();
+  EXPECT_FALSE(done.provisional);
+  const FitResult direct = fitStroke(done.raw, window->document().options());
+  ASSERT_TRUE(done.fit.has_value());
+  EXPECT_EQ(done.fit->quality.segments, direct.quality.segments);
+  EXPECT_DOUBLE_EQ(done.fit->quality.max_dev, direct.quality.max_dev);
+
+  drawWithMouse(window->canvas(), wave(60));  // undone before its fit comes back
+  window->undoStack()->undo();
+  window->finishBackgroundFits();
+  EXPECT_EQ(window->document().strokes().size(), 1u);
+
+  drawWithMouse(window->canvas(), wave(70));  // edited before its fit comes back
+  const std::size_t last = window->document().strokes().size() - 1;
+  int piece = -1;
+  const FitResult& quick = *window->document().strokes()[last].fit;
+  for (std::size_t i = 0; i < quick.pieces.size() && piece < 0; ++i)
+    if (quick.pieces[i].kind == PieceKind::kThreePoint && std::isfinite(quick.curve.pieces[i].segment.alpha())) piece = static_cast<int>(i);
+  ASSERT_GE(piece, 0);
+  const double steered = quick.curve.pieces[piece].segment.alpha() + 0.25;
+  if (!window->document().steerSegment(last, piece, steered).empty()) GTEST_SKIP() << "no G2 chain with that alpha";
+  window->finishBackgroundFits();
+  const DocumentStroke& edited = window->document().strokes()[last];
+  EXPECT_FALSE(edited.provisional);
+  EXPECT_NEAR(edited.fit->curve.pieces[piece].segment.alpha(), steered, 1e-12) << "the background fit undid the edit";
 }
 
 TEST_F(MainWindowTest, PenStrokeKeepsPressureAndTime) {
@@ -380,6 +420,7 @@ TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
 
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
+  window->finishBackgroundFits();  // the picture shows the fit as it ends up
   QApplication::processEvents();
   ASSERT_FALSE(window->document().strokes().empty()) << "the shared data's question mark did not import";
   ASSERT_TRUE(window->document().strokes().back().fit);
