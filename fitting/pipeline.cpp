@@ -33,9 +33,6 @@ constexpr double kPolishStartAlpha = 0.5;
 // data: fewer points lose alpha accuracy, more steps buy little but time.
 constexpr std::size_t kFitPoints = 250;
 constexpr int kFitIterations = 8;
-// A G2 chain from stage 7 replaces one with curvature gaps unless it strays further than
-// this many times that chain's largest deviation (and the tolerance).
-constexpr double kG2Preference = 2.0;
 // Stage 7 selects its segments for this much inside the tolerance: its model (~1e-6 of
 // a segment's length) and the move onto a corner (below) shift the exact chain a little.
 constexpr double kSelectionMargin = 0.01;
@@ -934,12 +931,12 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
-  if (polished.max_distance > tol) {
-    // Outside the tolerance: kept if closer to the points than the chain it started from,
-    // or, where that chain has curvature gaps, if not much further (G2 is the promise).
+  if (polished.max_distance > tol && fit.g2.usable()) {
+    // Outside the tolerance: kept if closer to the points than the G2 chain it started
+    // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
+    // (a kink where the user drew none is worse than a miss, which the figures report).
     fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
-    const double allowed = fit.g2.usable() ? fit.max_dev : std::max(tol, kG2Preference * fit.max_dev);
-    if (polished.max_distance >= allowed) return;
+    if (polished.max_distance >= fit.max_dev) return;
   }
   fit.max_dev = polished.max_distance;
   fit.warnings.clear();

@@ -8,8 +8,9 @@
 //  - a stroke with fewer than 3 distinct points or all points on one line (decided here,
 //    independently of the clean-up code) must throw StrokeError, and only those; any
 //    other exception, or StrokeError on a fittable stroke, fails;
-//  - the curve is not empty; quality.max_dev <= FitResult::tolerance (plus a rounding
-//    allowance of 1e-9 relative); g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
+//  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
+//    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
+//    relative), in a test of its own that is disabled until every stroke meets it;
 //  - glyph contours (fitted with assume_closed, see kDataSets) and the $1 'circle'
 //    gestures come out closed (curve.closed);
 //  - the $1 caret, v, rectangle, triangle and star keep their corners
@@ -151,9 +152,9 @@ Expectation expectationFor(const std::string& dataset, const fs::path& file) {
 
 class FitDataTest : public ::testing::TestWithParam<DataSet> {};
 
-// Runs every stroke of a data set; `quality` adds the per-stroke criteria max_dev <=
-// tolerance, g1 and g2 gaps (the others always apply).
-void fitDataSet(const DataSet& set, bool quality) {
+// Runs every stroke of a data set; `within_tolerance` adds the criterion max_dev <=
+// tolerance (the others always apply).
+void fitDataSet(const DataSet& set, bool within_tolerance) {
   const std::vector<fs::path> files = filesOf(kData / set.folder, set.extension);
   ASSERT_FALSE(files.empty()) << "no " << set.extension << " files under " << (kData / set.folder);
 
@@ -215,13 +216,13 @@ void fitDataSet(const DataSet& set, bool quality) {
         return ok;
       };
       EXPECT_TRUE(check(!r.curve.pieces.empty(), "empty curve")) << where;
-      if (quality) {
+      EXPECT_TRUE(check(r.quality.g1_gap < kG1Threshold, "g1 gap"))
+          << where << ": g1 gap " << r.quality.g1_gap << " >= " << kG1Threshold;
+      EXPECT_TRUE(check(r.quality.g2_gap < kG2Threshold, "g2 gap"))
+          << where << ": g2 gap " << r.quality.g2_gap << " >= " << kG2Threshold;
+      if (within_tolerance) {
         EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance), "max_dev > tolerance"))
             << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
-        EXPECT_TRUE(check(r.quality.g1_gap < kG1Threshold, "g1 gap"))
-            << where << ": g1 gap " << r.quality.g1_gap << " >= " << kG1Threshold;
-        EXPECT_TRUE(check(r.quality.g2_gap < kG2Threshold, "g2 gap"))
-            << where << ": g2 gap " << r.quality.g2_gap << " >= " << kG2Threshold;
       }
       if (expect.closed) {
         EXPECT_TRUE(check(r.curve.closed, "not closed")) << where << ": should be closed";
@@ -248,20 +249,20 @@ void fitDataSet(const DataSet& set, bool quality) {
 }
 
 // Every stroke fits without an exception (degenerate ones with StrokeError only), gives
-// a curve, closed shapes close and corners are kept.
-TEST_P(FitDataTest, EveryStrokeFitsClosesAndKeepsCorners) { fitDataSet(GetParam(), false); }
+// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6), closed shapes close and corners are kept.
+TEST_P(FitDataTest, EveryStrokeFitsG2ClosesAndKeepsCorners) { fitDataSet(GetParam(), false); }
 
-// Disabled because the pipeline does not meet issue 3's quality criteria on all real
-// data yet. Measured with stage 7 (the default): 9 of 224 fitted strokes fail ($1, MMG,
-// airfoils and kanjivg CSV none; Omniglot 6, kanjivg SVG 1, glyphs 2). 4 keep curvature
-// (and tangent) gaps: pixel-quantized Omniglot mouse strokes and DejaVu g's inner
-// contour, where stage 6 finds no LA segment for a piece and stage 7's G2 chain strays
-// more than twice as far as that gapped chain (kG2Preference in fitting/pipeline.cpp).
-// 5 are max_dev only, 1.15-5.9x the tolerance: Omniglot strokes with kinks the corner
-// test does not take, the kanjivg SVG of 04e59 (its CSV twin passes) and DejaVu 2, where
-// the chain fit stays in a local minimum no split gets out of. Run it with
-// --gtest_also_run_disabled_tests for the per-stroke list.
-TEST_P(FitDataTest, DISABLED_EveryStrokeWithinToleranceAndG2) { fitDataSet(GetParam(), true); }
+// Disabled because the pipeline does not keep every real stroke within the default
+// tolerance yet. Measured with stage 7 (the default): 9 of 224 fitted strokes miss it
+// ($1, MMG, airfoils none; Omniglot 6, kanjivg 2, glyphs 1), every one of them G2:
+//  - Omniglot: pixel-quantized mouse strokes that double back and kink (1.06-7.2x);
+//    where no G2 chain keeps the tolerance, the G2 chain stays and the miss is reported
+//    (a kink the user did not draw is worse);
+//  - kanjivg 04e59, CSV 1.10x and SVG 1.57x: a hairpin turn with a radius of about two
+//    tolerances that the corner test takes for a corner;
+//  - DejaVu "2", 1.04x: a local minimum of the chain fit that no split gets out of.
+// Run it with --gtest_also_run_disabled_tests for the per-stroke list.
+TEST_P(FitDataTest, DISABLED_EveryStrokeWithinTolerance) { fitDataSet(GetParam(), true); }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, FitDataTest, ::testing::ValuesIn(kDataSets),
                          [](const ::testing::TestParamInfo<DataSet>& info) { return std::string(info.param.name); });
