@@ -31,7 +31,7 @@ struct SelectionOptions {
   double significance = 4.0;  // F threshold (about the 1% level for a few unknowns and many points)
   int max_edits = 12;         // splits, collapses and merges together
   int patience = 4;           // a fit outside the tolerance may take this many times fit.max_iterations more
-  int reweighing_rounds = 3;  // Lawson rounds before a split (0: none)
+  int reweighing_rounds = 8;  // Lawson rounds before a split (0: none)
   /// A segment turning less than this (radians) is a collapse candidate; a joint whose
   /// curvature changes by less than this fraction on either side, a merge candidate.
   double sliver_turning = 0.08;
