@@ -364,6 +364,48 @@ TEST_F(LafitCli, IndependentCheckerFindsTheFitG2AndWithinTolerance) {
   }
 }
 
+// A closed stroke drawn past its start: the clean-up cuts the overlap. --stages lists
+// what it kept (each kept point's raw sample in "source", the count cut), so lacheck
+// can measure lafit's max_dev on the same points: within the tolerance, G2, closed.
+TEST_F(LafitCli, StagesNameThePointsKeptSoTheCheckerMeasuresTheSame) {
+  if (!fs::exists(kPython) || !fs::exists(kLacheck)) GTEST_SKIP() << "no " << kPython << " or " << kLacheck;
+  if (run({kPython.string(), "-c", "import numpy"}).status != 0) GTEST_SKIP() << "python3 has no numpy";
+  copyData("strokes/dollar1_unistroke_s01_pilot/csv/slow/circle.csv", "circle.csv");
+  const Outcome r = lafit({"fit", "circle.csv", "--stages", "-o", "curve.json"});
+  ASSERT_EQ(r.status, 0) << r;
+  const json curves = curvesOf(readJson("curve.json"));
+  ASSERT_FALSE(curves.empty());
+  std::size_t cut = 0;
+  std::string csv;  // the kept points of every stroke, a blank line between strokes
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    const json& cleaned = curves[i].at("stages").at("cleaned");
+    const json& raw = curves[i].at("stages").at("raw");
+    EXPECT_TRUE(curves[i].at("closed").get<bool>()) << "curve " << i;
+    cut += cleaned.at("removed_overlap").get<std::size_t>();
+    const json& kept = cleaned.at("points");
+    const json& source = cleaned.at("source");
+    ASSERT_EQ(source.size(), kept.size());
+    if (i > 0) csv += "\n";
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      EXPECT_EQ(kept[k], raw[source[k].get<std::size_t>()]) << "curve " << i << ", kept point " << k;
+      csv += std::to_string(kept[k][0].get<double>()) + "," + std::to_string(kept[k][1].get<double>()) + "\n";
+    }
+  }
+  ASSERT_GT(cut, 0u) << "the circles should be drawn past their start";
+  write("kept.csv", csv);
+  const Outcome check = run({kPython.string(), kLacheck.string(), "curve.json", "kept.csv", "--json"});
+  ASSERT_EQ(check.status, 0) << check;
+  const json results = json::parse(check.out, nullptr, false);
+  ASSERT_TRUE(results.is_array() && results.size() == curves.size()) << check;
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const json& c = results[i];
+    EXPECT_LT(c.at("g1_gap").get<double>(), kG1Threshold) << c;
+    EXPECT_LT(c.at("g2_gap").get<double>(), kG2Threshold) << c;
+    const double tolerance = curves[i].at("quality").at("tolerance").get<double>();
+    EXPECT_LE(c.at("max_dev").get<double>() * c.at("diag").get<double>(), tolerance * (1 + kLacheckDeviationSlack)) << c;
+  }
+}
+
 TEST_F(LafitCli, FitAppliesToleranceAndMaxExtrema) {
   copyData(kBrace, "brace.csv");
   // A coarse tolerance is the bound on the deviation, as a fraction of the diagonal

@@ -66,6 +66,8 @@ nlohmann::json fitResultToJson(const FitResult& r, const Stroke& raw, bool with_
                        {"closed", r.cleaned.closed},
                        {"trimmed_start", r.cleaned.trimmed_start},
                        {"trimmed_end", r.cleaned.trimmed_end},
+                       {"removed_overlap", r.cleaned.removed_overlap},
+                       {"source", r.cleaned.source},
                        {"removed_invalid", r.cleaned.removed_invalid},
                        {"removed_duplicates", r.cleaned.removed_duplicates}};
   nlohmann::json splines = nlohmann::json::array();
