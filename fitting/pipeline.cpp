@@ -103,6 +103,7 @@ double noiseSigma(const std::vector<Vec2>& p) {
 struct Noise {
   double sigma = 0.0;
   double floor = 0.0;
+  bool on_grid = false;  // the points lie on a pixel grid
 };
 
 // The step of the grid the points lie on along one coordinate (every value an integer
@@ -134,6 +135,7 @@ Noise noiseOf(const std::vector<Vec2>& p) {
   Noise n;
   n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
   n.floor = std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor * h : 0.0);
+  n.on_grid = on_grid;
   return n;
 }
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
@@ -162,6 +164,18 @@ std::vector<Vec2> fillGaps(const std::vector<Vec2>& p, bool closed, double spaci
     const int pieces = static_cast<int>(std::ceil(length / spacing));
     for (int k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / pieces));
   }
+  return out;
+}
+
+// The points with a binomial filter (1 4 6 4 1)/16 over five neighbours; an open
+// part's ends stay. On a pixel grid it turns a one-pixel stair into a slope.
+std::vector<Vec2> withoutStairs(const std::vector<Vec2>& p, bool closed) {
+  const auto m = static_cast<long>(p.size());
+  if (m < 5) return p;
+  auto at = [&](long k) { return p[static_cast<std::size_t>(closed ? (k % m + m) % m : std::clamp(k, 0L, m - 1))]; };
+  std::vector<Vec2> out = p;
+  for (long i = closed ? 0 : 1; i < (closed ? m : m - 1); ++i)
+    out[static_cast<std::size_t>(i)] = (at(i - 2) + 4.0 * at(i - 1) + 6.0 * at(i) + 4.0 * at(i + 1) + at(i + 2)) / 16.0;
   return out;
 }
 
@@ -979,18 +993,28 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
         r.timings.polish_ms += msSince(tp);
       };
       polish(fit);
-      // Where that leaves a gap or a miss, stages 2-6 as the paper has them (cutting pieces
-      // that stray or have no LA segment) give a chain close to the points, polished in
-      // turn; the better of the two stays.
-      if (!fit.g2.usable() || !(fit.max_dev <= r.tolerance)) {
-        FitOptions plain = options;
-        plain.polish = false;
-        PartFit other = fitPart(parts[k], r.tolerance, noise, diag, plain, r.timings);
+      // Where that leaves a gap or a miss, other starts: the better result stays (G2
+      // first, then the deviation from the part's own points).
+      auto misses = [&] { return !fit.g2.usable() || !(fit.max_dev <= r.tolerance); };
+      auto consider = [&](PartFit other) {
         polish(other);
         if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, parts[k].points, diag).max;
         if (std::isnan(other.max_dev)) other.max_dev = deviationOf(other.segments, parts[k].points, diag).max;
         const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
         if (better) fit = std::move(other);
+      };
+      // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
+      // segment): a chain close to the points.
+      FitOptions plain = options;
+      plain.polish = false;
+      if (misses()) consider(fitPart(parts[k], r.tolerance, noise, diag, plain, r.timings));
+      // Pixel-quantized strokes: a spline through the stairs has an extremum at every
+      // step and the chain from it strays; stages 2-6 on the points with their stairs
+      // smoothed (stage 7 still fits the points themselves).
+      if (misses() && noise.on_grid) {
+        Part smoothed = parts[k];
+        smoothed.points = withoutStairs(parts[k].points, parts[k].closed);
+        consider(fitPart(smoothed, r.tolerance, noise, diag, options, r.timings));
       }
     }
     r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());

@@ -23,7 +23,8 @@
 // segment strays (the fit closes such misses, and cuts leave slivers). Where stage 6 finds
 // no G2 chain the fit starts from the spline itself; where its result still misses the
 // tolerance or G2, stages 2-6 as the paper has them (cutting what strays) give a second
-// start, and the better result stays (G2 first, then the deviation).
+// start, and for pixel-quantized strokes stages 2-6 on the points with their stairs
+// smoothed a third; the best result stays (G2 first, then the deviation).
 
 #include <optional>
 #include <string>
