@@ -981,42 +981,70 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
 
-  const std::vector<Part> parts = splitAtCorners(r.cleaned);
+  std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    PartFit fit = fitPart(parts[k], r.tolerance, noise, diag, options, r.timings);
-    if (options.polish && options.g2 != G2Method::kOff) {  // (stage 7 makes the chain G2)
-      const bool ends_at_corner = r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size();
-      auto polish = [&](PartFit& f) {
-        const auto tp = Clock::now();
-        polishPart(f, parts[k], ends_at_corner, r.tolerance, noise.sigma, diag, options);
-        r.timings.polish_ms += msSince(tp);
-      };
-      polish(fit);
-      // Where that leaves a gap or a miss, other starts: the better result stays (G2
-      // first, then the deviation from the part's own points).
-      auto misses = [&] { return !fit.g2.usable() || !(fit.max_dev <= r.tolerance); };
-      auto consider = [&](PartFit other) {
-        polish(other);
-        if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, parts[k].points, diag).max;
-        if (std::isnan(other.max_dev)) other.max_dev = deviationOf(other.segments, parts[k].points, diag).max;
-        const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
-        if (better) fit = std::move(other);
-      };
-      // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
-      // segment): a chain close to the points.
-      FitOptions plain = options;
-      plain.polish = false;
-      if (misses()) consider(fitPart(parts[k], r.tolerance, noise, diag, plain, r.timings));
-      // Pixel-quantized strokes: a spline through the stairs has an extremum at every
-      // step and the chain from it strays; stages 2-6 on the points with their stairs
-      // smoothed (stage 7 still fits the points themselves).
-      if (misses() && noise.on_grid) {
-        Part smoothed = parts[k];
-        smoothed.points = withoutStairs(parts[k].points, parts[k].closed);
-        consider(fitPart(smoothed, r.tolerance, noise, diag, options, r.timings));
-      }
+  const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
+  auto fitOne = [&](const Part& part, bool ends_at_corner) {
+    PartFit fit = fitPart(part, r.tolerance, noise, diag, options, r.timings);
+    if (!polishing) return fit;
+    auto polish = [&](PartFit& f) {
+      const auto tp = Clock::now();
+      polishPart(f, part, ends_at_corner, r.tolerance, noise.sigma, diag, options);
+      r.timings.polish_ms += msSince(tp);
+    };
+    polish(fit);
+    // Where that leaves a gap or a miss, other starts: the better result stays (G2
+    // first, then the deviation from the part's own points).
+    auto misses = [&] { return !fit.g2.usable() || !(fit.max_dev <= r.tolerance); };
+    auto consider = [&](PartFit other) {
+      polish(other);
+      if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
+      if (std::isnan(other.max_dev)) other.max_dev = deviationOf(other.segments, part.points, diag).max;
+      const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
+      if (better) fit = std::move(other);
+    };
+    // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
+    // segment): a chain close to the points.
+    FitOptions plain = options;
+    plain.polish = false;
+    if (misses()) consider(fitPart(part, r.tolerance, noise, diag, plain, r.timings));
+    // Pixel-quantized strokes: a spline through the stairs has an extremum at every
+    // step and the chain from it strays; stages 2-6 on the points with their stairs
+    // smoothed (stage 7 still fits the points themselves).
+    if (misses() && noise.on_grid) {
+      Part smoothed = part;
+      smoothed.points = withoutStairs(part.points, part.closed);
+      consider(fitPart(smoothed, r.tolerance, noise, diag, options, r.timings));
     }
+    if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
+    return fit;
+  };
+  auto endsAtCorner = [&](std::size_t k) { return r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size(); };
+  std::vector<PartFit> fits;
+  for (std::size_t k = 0; k < parts.size(); ++k) fits.push_back(fitOne(parts[k], endsAtCorner(k)));
+  // A corner is the clean-up's reading of the stroke, and a tight bend can pass for one.
+  // Where a part beside an interior corner of an open stroke misses the tolerance and
+  // the two parts fitted as one smooth part keep it, the corner goes.
+  for (std::size_t k = 0; polishing && !r.cleaned.closed && k + 1 < parts.size();) {
+    if (fits[k].max_dev <= r.tolerance && fits[k + 1].max_dev <= r.tolerance) {
+      ++k;
+      continue;
+    }
+    Part merged = parts[k];
+    merged.points.insert(merged.points.end(), parts[k + 1].points.begin() + 1, parts[k + 1].points.end());
+    PartFit smooth = fitOne(merged, endsAtCorner(k + 1));
+    if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance)) {
+      ++k;
+      continue;
+    }
+    parts[k] = std::move(merged);
+    fits[k] = std::move(smooth);
+    parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+    fits.erase(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1);
+    r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    PartFit& fit = fits[k];
     r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
       r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
