@@ -1023,25 +1023,40 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   std::vector<PartFit> fits;
   for (std::size_t k = 0; k < parts.size(); ++k) fits.push_back(fitOne(parts[k], endsAtCorner(k)));
   // A corner is the clean-up's reading of the stroke, and a tight bend can pass for one.
-  // Where a part beside an interior corner of an open stroke misses the tolerance and
-  // the two parts fitted as one smooth part keep it, the corner goes.
-  for (std::size_t k = 0; polishing && !r.cleaned.closed && k + 1 < parts.size();) {
-    if (fits[k].max_dev <= r.tolerance && fits[k + 1].max_dev <= r.tolerance) {
+  // Where a part beside a corner misses the tolerance and the two parts fitted as one
+  // smooth part keep it, the corner goes. (The corner after part k: corners[k] of an
+  // open stroke, corners[k + 1] of a closed one, whose corners[0] is its start; a
+  // closed stroke's only corner joins its one part to itself.)
+  const bool closed = r.cleaned.closed;
+  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (closed && parts.size() == 1 && k == 0));) {
+    const bool seam = k + 1 == parts.size();
+    const PartFit& next = seam ? fits[0] : fits[k + 1];
+    if (fits[k].max_dev <= r.tolerance && next.max_dev <= r.tolerance) {
       ++k;
       continue;
     }
     Part merged = parts[k];
-    merged.points.insert(merged.points.end(), parts[k + 1].points.begin() + 1, parts[k + 1].points.end());
-    PartFit smooth = fitOne(merged, endsAtCorner(k + 1));
+    if (seam) {
+      merged.points.pop_back();  // the corner again
+      merged.closed = true;
+      merged.starts_at_corner = false;
+    } else {
+      merged.points.insert(merged.points.end(), parts[k + 1].points.begin() + 1, parts[k + 1].points.end());
+    }
+    PartFit smooth = fitOne(merged, !seam && endsAtCorner(k + 1));
     if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance)) {
       ++k;
       continue;
     }
     parts[k] = std::move(merged);
     fits[k] = std::move(smooth);
+    if (seam) {
+      r.cleaned.corners.clear();
+      break;
+    }
     parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     fits.erase(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1);
-    r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(k));
+    r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
   }
   for (std::size_t k = 0; k < parts.size(); ++k) {
     PartFit& fit = fits[k];

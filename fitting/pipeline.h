@@ -14,9 +14,9 @@
 //                      the points need (ours; on by default)
 //   8 quality figures  fitting/quality.h
 // A stroke with deliberate corners is fitted piecewise between them; the segment after
-// a corner carries corner = true. With stage 7, an interior corner of an open stroke
-// whose neighbouring parts miss the tolerance goes where the two parts fitted as one
-// smooth part keep it (a tight bend the clean-up took for a corner). A step more than ten median steps long (a font
+// a corner carries corner = true. With stage 7, a corner beside a part that misses the
+// tolerance goes where the two parts fitted as one smooth part keep it (a tight bend
+// the clean-up took for a corner). A step more than ten median steps long (a font
 // outline's unsampled straight edge, samples the digitizer lost) is filled with points
 // along it for stages 2-7; the quality figures are measured on the stroke's own points.
 //
