@@ -907,8 +907,9 @@ std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const
 
 // Stage 7 on one part: fits its chain to the points and selects its segments
 // (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
-// the spline. The result replaces the part's chain where it is within the tolerance or
-// closer to the points than that chain; fit.max_dev is then known.
+// the spline. The result replaces the part's chain where it is within the tolerance,
+// closer to the points than that chain, or that chain has gaps; fit.max_dev is then
+// known.
 void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
                 const FitOptions& options) {
   if (!fit.spline) return;  // a straight part
@@ -996,10 +997,13 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     // Where that leaves a gap or a miss, other starts: the better result stays (G2
     // first, then the deviation from the part's own points).
     auto misses = [&] { return !fit.g2.usable() || !(fit.max_dev <= r.tolerance); };
+    auto measure = [&](PartFit& f) {
+      if (std::isnan(f.max_dev)) f.max_dev = deviationOf(f.segments, part.points, diag).max;
+    };
     auto consider = [&](PartFit other) {
       polish(other);
-      if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
-      if (std::isnan(other.max_dev)) other.max_dev = deviationOf(other.segments, part.points, diag).max;
+      measure(fit);
+      measure(other);
       const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
       if (better) fit = std::move(other);
     };
@@ -1016,7 +1020,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
       smoothed.points = withoutStairs(part.points, part.closed);
       consider(fitPart(smoothed, r.tolerance, noise, diag, options, r.timings));
     }
-    if (std::isnan(fit.max_dev)) fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
+    measure(fit);
     return fit;
   };
   auto endsAtCorner = [&](std::size_t k) { return r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size(); };
