@@ -411,7 +411,12 @@ void MainWindow::takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher) {
   m_background.erase(it);
   BackgroundFit done = watcher->result();
   watcher->deleteLater();
-  if (m_document.completeFit(done.id, done.options, std::move(done.fit), done.error)) documentChanged();
+  const int stroke = m_selected_stroke, piece = m_selected_piece;
+  if (!m_document.completeFit(done.id, done.options, std::move(done.fit), done.error)) return;
+  documentChanged();
+  // A segment selected on another stroke stays selected (that stroke did not change).
+  const auto& strokes = m_document.strokes();
+  if (stroke >= 0 && stroke < static_cast<int>(strokes.size()) && strokes[stroke].id != done.id) selectSegment(stroke, piece);
 }
 
 void MainWindow::finishBackgroundFits() {
