@@ -24,6 +24,10 @@ enum LocalUnknown { kAlpha = 0, kLogKappaStart = 1, kLogKappaEnd = 2, kLogTurnin
 // stroke that really wants zero curvature there has an inflection the segmentation
 // missed; the pipeline splits it.
 constexpr double kKappaFloor = 1e-3;
+// A segment turns at most this much (radians, eight whole turns; more if it starts so):
+// an LA spiral may wind a few times, but a trial step that winds it thousands of times
+// is a solver astray, and one such segment costs its quadrature tens of milliseconds.
+constexpr double kMaxSegmentTurning = 16.0 * std::numbers::pi;
 // Largest change of an unknown in one step (normalized frame: unit diagonal): the
 // linear model of a chain is trusted only this far. A longer step is scaled down whole.
 constexpr double kMaxAlphaStep = 1.0, kMaxRelativeKappaStep = 0.5, kMaxLogTurningStep = 0.5, kMaxAngleStep = 0.5,
@@ -64,6 +68,9 @@ constexpr double kNegligibleDecrease = 0.1;
 // violation (normalized units) is below kRestored.
 constexpr int kRestoreSteps = 5;
 constexpr double kRestored = 1e-12;
+// The exact chain is closed to this (normalized units): LaSegment's positions are good
+// to ~1e-10 of a length, and a tighter target only repeats its quadrature.
+constexpr double kExactlyClosed = 1e-11;
 // A chain meets its constraints (joints, closure, a fixed end) below this violation
 // (normalized units); snapToJoints closes what is left exactly.
 constexpr double kAdmissible = 1e-7;
@@ -870,7 +877,8 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     if (zero0 && zero1) return refuse("segment " + std::to_string(i) + " is straight");
     layout.zero.push_back(zero0 ? ZeroEnd::kStart : zero1 ? ZeroEnd::kEnd : ZeroEnd::kNone);
     layout.turn_sign.push_back((zero0 ? kappa[i + 1] : kappa[i]) < 0.0 ? -1.0 : 1.0);
-    layout.turning.push_back(add(std::log(std::abs(initial[i].turning())), -INFINITY, INFINITY, kMaxLogTurningStep));
+    const double log_turning = std::log(std::abs(initial[i].turning()));
+    layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
     const double lo = options.min_alpha;
     const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
     // (the cap is lifted to a steeper start's alpha: clamping it would change the chain
@@ -985,7 +993,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   try {
     fitted = build(model, x);
     exact = exactConstraints(fitted);
-    for (int k = 0; k < kRestoreSteps && exact.size() > 0 && exact.norm() > kRestored; ++k) {
+    for (int k = 0; k < kRestoreSteps && exact.size() > 0 && exact.norm() > kExactlyClosed; ++k) {
       const Eigen::MatrixXd cjac = constraintJacobian(model);
       const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-exact);
       const Eigen::VectorXd moved = (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);

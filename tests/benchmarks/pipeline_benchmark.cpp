@@ -5,6 +5,10 @@
 //
 //   build/tests/benchmarks/pipeline_benchmark --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
+// Also the bundled samples as lafit fits them: the two pen strokes of samples/
+// question_mark.csv and the Clark Y profile of samples/clark-y.dat (a closed curve with
+// its leading-edge turn, where a solver astray once cost 340 ms).
+//
 // The stroke is a G2 chain of four LA segments (alphas -1, 2, 0.5, -0.5; curvature
 // extrema at the joints) sampled at unit spacing with Gaussian noise of 0.1% of its
 // bounding-box diagonal (std::mt19937, seed 5), scaled so that it has N points.
@@ -13,6 +17,7 @@
 
 #include <random>
 
+#include "app/io/point_file.h"
 #include "fitting/chain_fit.h"
 #include "fitting/pipeline.h"
 
@@ -54,6 +59,16 @@ void BM_FitStroke(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_FitStroke)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
+
+void BM_FitSample(benchmark::State& state) {
+  const char* names[] = {"question_mark.csv", "clark-y.dat"};
+  const std::vector<Stroke> strokes = readStrokes(std::string(LAFAIR_SOURCE_DIR) + "/samples/" + names[state.range(0)]);
+  for (auto _ : state)
+    for (const Stroke& s : strokes) benchmark::DoNotOptimize(fitStroke(s));
+  state.SetLabel(names[state.range(0)]);
+  state.counters["strokes"] = static_cast<double>(strokes.size());
+}
+BENCHMARK(BM_FitSample)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The paper's pipeline alone (FitOptions::polish off: stages 1-6, as the app's live
 // preview runs it while the pen moves).
