@@ -461,13 +461,16 @@ void MainWindow::documentChanged() {
     return;
   }
   const QualityFigures& q = last->quality;
-  m_status->setText(QString("segments %1 · max deviation %2 (%3% of size) · g2 gap %4 · extrema %5 · fit %6 ms")
+  const bool refining = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
+                                    [](const DocumentStroke& s) { return s.provisional; });
+  m_status->setText(QString("segments %1 · max deviation %2 (%3% of size) · g2 gap %4 · extrema %5 · fit %6 ms%7")
                         .arg(q.segments)
                         .arg(q.max_dev, 0, 'g', 3)
                         .arg(100.0 * q.max_dev / std::max(q.diagonal, 1e-300), 0, 'f', 2)
                         .arg(q.g2_gap, 0, 'g', 2)
                         .arg(q.extrema)
-                        .arg(last->timings.total_ms, 0, 'f', 2));
+                        .arg(last->timings.total_ms, 0, 'f', 2)
+                        .arg(refining ? " · fitting the chain to the points…" : ""));
 }
 
 void MainWindow::showMessage(const QString& what) { m_status->setText(what); }

@@ -12,6 +12,8 @@
 #include <QTabletEvent>
 #include <QTemporaryDir>
 #include <QSlider>
+#include <QLabel>
+#include <QStatusBar>
 #include <QTest>
 #include <QUndoStack>
 #include <cmath>
@@ -94,7 +96,14 @@ TEST_F(MainWindowTest, PenUpFitsAtOnceAndStage7FollowsOffTheUiThread) {
     ASSERT_TRUE(s.fit.has_value()) << s.error;
     EXPECT_TRUE(s.provisional) << "stage 7 is on by default: it must not run on the UI thread";
   }
+  auto statusText = [&] {
+    QString text;
+    for (const QLabel* label : window->statusBar()->findChildren<QLabel*>()) text += label->text();
+    return text;
+  };
+  EXPECT_TRUE(statusText().contains("fitting the chain")) << statusText().toStdString();
   window->finishBackgroundFits();
+  EXPECT_FALSE(statusText().contains("fitting the chain")) << statusText().toStdString();
   const DocumentStroke& done = window->document().strokes().back();
   EXPECT_FALSE(done.provisional);
   const FitResult direct = fitStroke(done.raw, window->document().options());
