@@ -1,5 +1,6 @@
 #include "app/gui/document.h"
 
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -43,6 +44,13 @@ std::map<int, Vec2> pointsFromJson(const nlohmann::json& j) {
   std::map<int, Vec2> points;
   for (const auto& [key, value] : j.items()) points[std::stoi(key)] = Vec2(value.at(0).get<double>(), value.at(1).get<double>());
   return points;
+}
+
+// Stroke ids are unique across documents: a background fit of a sketch that was
+// replaced (opened over) must not find a stroke of the new one.
+std::uint64_t nextStrokeId() {
+  static std::atomic<std::uint64_t> next{1};
+  return next++;
 }
 
 }  // namespace
@@ -114,22 +122,29 @@ std::size_t Document::addStroke(const Stroke& raw) {
   return strokes_.size() - 1;
 }
 
+void Document::refit(DocumentStroke& s, bool provisional) const {
+  const bool edited = !s.alpha_overrides.empty() || !s.joint_overrides.empty() || !s.apex_overrides.empty();
+  s.provisional = provisional && !edited && options_.polish && options_.g2 != G2Method::kOff;
+  if (!s.provisional) {
+    fit(s);
+    return;
+  }
+  FitOptions quick = options_;
+  quick.polish = false;
+  try {
+    s.fit = fitStroke(s.raw, quick);
+    s.error.clear();
+  } catch (const StrokeError& e) {  // nothing to complete: the full fit refuses it too
+    s.fit.reset();
+    s.error = e.what();
+    s.provisional = false;
+  }
+}
+
 void Document::insertStroke(std::size_t index, const Stroke& raw, bool provisional) {
   DocumentStroke s{raw, std::nullopt, {}, {}, {}, {}};
-  s.id = next_id_++;
-  s.provisional = provisional && options_.polish && options_.g2 != G2Method::kOff;
-  if (s.provisional) {
-    FitOptions quick = options_;
-    quick.polish = false;
-    try {
-      s.fit = fitStroke(raw, quick);
-    } catch (const StrokeError& e) {  // nothing to complete: the full fit refuses it too
-      s.error = e.what();
-      s.provisional = false;
-    }
-  } else {
-    fit(s);
-  }
+  s.id = nextStrokeId();
+  refit(s, provisional);
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
 }
 
@@ -152,12 +167,9 @@ void Document::removeStroke(std::size_t index) {
   if (index < strokes_.size()) strokes_.erase(strokes_.begin() + static_cast<long>(index));
 }
 
-void Document::setOptions(const FitOptions& options) {
+void Document::setOptions(const FitOptions& options, bool provisional) {
   options_ = options;
-  for (DocumentStroke& s : strokes_) {
-    fit(s);
-    s.provisional = false;
-  }
+  for (DocumentStroke& s : strokes_) refit(s, provisional);
 }
 
 void Document::clear() {
@@ -206,7 +218,7 @@ void Document::save(const QString& path) const {
   writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
 }
 
-void Document::load(const QString& path) {
+void Document::load(const QString& path, bool provisional) {
   const std::string name = path.toStdString();
   nlohmann::json doc;
   try {
@@ -258,8 +270,8 @@ void Document::load(const QString& path) {
   strokes_ = std::move(loaded);
   constructions_ = std::move(constructions);
   for (DocumentStroke& s : strokes_) {
-    s.id = next_id_++;
-    fit(s);
+    s.id = nextStrokeId();
+    refit(s, provisional);
   }
 }
 

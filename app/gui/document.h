@@ -50,7 +50,9 @@ class Document {
   /// there, still provisional (not edited since) and the options are the same. Returns
   /// whether it was taken.
   bool completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit, const std::string& error);
-  void setOptions(const FitOptions& options);  // refits every stroke
+  /// Refits every stroke; `provisional` as insertStroke (strokes the user edited are
+  /// always fitted in full: their edits are applied to the full fit).
+  void setOptions(const FitOptions& options, bool provisional = false);
   /// Gives a segment the user's alpha (kept across refits while the segmentation has
   /// the same number of pieces). Returns "" or why it cannot.
   std::string steerSegment(std::size_t stroke, int piece, double alpha);
@@ -68,10 +70,11 @@ class Document {
   /// "constructions": [{"kind", "handles", "parameters", "curve"}]}.
   /// Written atomically; reading throws std::runtime_error naming the file and problem.
   void save(const QString& path) const;
-  void load(const QString& path);
+  void load(const QString& path, bool provisional = false);  // fits as setOptions
 
  private:
   void fit(DocumentStroke& s) const;
+  void refit(DocumentStroke& s, bool provisional) const;  // fit(), or stages 1-6 only (provisional)
   // Runs one user edit of a fitted stroke: `edit` returns the edited fit or nothing
   // (with why); on success `remember` records the edit as an override.
   template <class Edit, class Remember>
@@ -79,7 +82,6 @@ class Document {
   std::vector<DocumentStroke> strokes_;
   std::vector<Construction> constructions_;
   FitOptions options_;
-  std::uint64_t next_id_ = 1;
 };
 
 }  // namespace la::gui

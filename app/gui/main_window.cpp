@@ -74,7 +74,8 @@ class SetOptionsCommand : public QUndoCommand {
 
  private:
   void apply(const FitOptions& o) {
-    m_window->document().setOptions(o);
+    m_window->document().setOptions(o, /*provisional=*/true);
+    m_window->fitProvisionalInBackground();
     m_window->parameters()->setOptions(o);
     m_window->documentChanged();
   }
@@ -405,6 +406,10 @@ void MainWindow::fitInBackground(std::size_t index) {
   }));
 }
 
+void MainWindow::fitProvisionalInBackground() {
+  for (std::size_t i = 0; i < m_document.strokes().size(); ++i) fitInBackground(i);
+}
+
 void MainWindow::takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher) {
   const auto it = std::find(m_background.begin(), m_background.end(), watcher);
   if (it == m_background.end()) return;  // taken already (finishBackgroundFits)
@@ -483,12 +488,13 @@ void MainWindow::showError(const QString& what) {
 bool MainWindow::openFile(const QString& path) {
   Document loaded;
   try {
-    loaded.load(path);
+    loaded.load(path, /*provisional=*/true);
   } catch (const std::exception& e) {
     showError(QString::fromStdString(e.what()));
     return false;  // the open document is untouched
   }
   m_document = std::move(loaded);
+  fitProvisionalInBackground();
   m_canvas->setDocument(&m_document);
   m_parameters->setOptions(m_document.options());
   m_undo->clear();

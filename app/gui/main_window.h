@@ -68,6 +68,7 @@ class MainWindow : public QMainWindow {
   void finishBackgroundFits();
   /// Starts stage 7 of provisional stroke `index` off the UI thread.
   void fitInBackground(std::size_t index);
+  void fitProvisionalInBackground();  // of every provisional stroke
 
  private:
   struct BackgroundFit {

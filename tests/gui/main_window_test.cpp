@@ -131,6 +131,35 @@ TEST_F(MainWindowTest, PenUpFitsAtOnceAndStage7FollowsOffTheUiThread) {
   EXPECT_NEAR(edited.fit->curve.pieces[piece].segment.alpha(), steered, 1e-12) << "the background fit undid the edit";
 }
 
+// A parameter change refits every stroke the same way: stages 1-6 at once, stage 7 in
+// the background, ending as fitStroke with the new options. A stroke the user edited is
+// refitted in full at once (its edits apply to the full fit).
+TEST_F(MainWindowTest, ParameterChangeRefitsInTheBackgroundExceptEditedStrokes) {
+  drawWithMouse(window->canvas(), wave());
+  drawWithMouse(window->canvas(), wave(70));
+  window->finishBackgroundFits();
+  const FitResult& first = *window->document().strokes()[0].fit;
+  int piece = -1;
+  for (std::size_t i = 0; i < first.pieces.size() && piece < 0; ++i)
+    if (first.pieces[i].kind == PieceKind::kThreePoint && std::isfinite(first.curve.pieces[i].segment.alpha())) piece = static_cast<int>(i);
+  ASSERT_GE(piece, 0);
+  const bool steered = window->document().steerSegment(0, piece, first.curve.pieces[piece].segment.alpha() + 0.2).empty();
+  FitOptions o = window->document().options();
+  o.tolerance_fraction = 0.004;
+  window->parameters()->setOptions(o);
+  emit window->parameters()->optionsChanged(o);
+  const auto& strokes = window->document().strokes();
+  EXPECT_EQ(strokes[0].provisional, !steered);
+  EXPECT_TRUE(strokes[1].provisional);
+  window->finishBackgroundFits();
+  EXPECT_FALSE(strokes[1].provisional);
+  const FitResult direct = fitStroke(strokes[1].raw, window->document().options());
+  ASSERT_TRUE(strokes[1].fit.has_value());
+  EXPECT_EQ(strokes[1].fit->quality.segments, direct.quality.segments);
+  EXPECT_DOUBLE_EQ(strokes[1].fit->quality.max_dev, direct.quality.max_dev);
+  EXPECT_DOUBLE_EQ(strokes[1].fit->tolerance, direct.tolerance);
+}
+
 TEST_F(MainWindowTest, PenStrokeKeepsPressureAndTime) {
   drawWithPen(window->canvas(), wave(80));
   ASSERT_EQ(window->document().strokes().size(), 1u);
@@ -168,6 +197,7 @@ TEST_F(MainWindowTest, SaveAndReopenGivesTheSameCurves) {
   const Curve saved = lastFit().curve;
   MainWindow other;
   ASSERT_TRUE(other.openFile(path));
+  other.finishBackgroundFits();  // (opening fits stages 1-6 at once, stage 7 in the background)
   ASSERT_EQ(other.document().strokes().size(), 1u);
   const Curve& reopened = other.document().strokes()[0].fit->curve;
   ASSERT_EQ(reopened.pieces.size(), saved.pieces.size());
