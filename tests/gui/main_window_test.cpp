@@ -56,6 +56,14 @@ void drawWithPen(QWidget* canvas, const std::vector<QPoint>& pts) {
   send(QEvent::TabletRelease, pts.back(), 0.0);
 }
 
+// The first segment whose alpha the user may steer (a 3-point piece, not a circle), or -1.
+int firstSteerablePiece(const FitResult& fit) {
+  for (std::size_t i = 0; i < fit.pieces.size(); ++i)
+    if (fit.pieces[i].kind == PieceKind::kThreePoint && std::isfinite(fit.curve.pieces[i].segment.alpha()))
+      return static_cast<int>(i);
+  return -1;
+}
+
 class MainWindowTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -118,10 +126,8 @@ TEST_F(MainWindowTest, PenUpFitsAtOnceAndStage7FollowsOffTheUiThread) {
 
   drawWithMouse(window->canvas(), wave(70));  // edited before its fit comes back
   const std::size_t last = window->document().strokes().size() - 1;
-  int piece = -1;
   const FitResult& quick = *window->document().strokes()[last].fit;
-  for (std::size_t i = 0; i < quick.pieces.size() && piece < 0; ++i)
-    if (quick.pieces[i].kind == PieceKind::kThreePoint && std::isfinite(quick.curve.pieces[i].segment.alpha())) piece = static_cast<int>(i);
+  const int piece = firstSteerablePiece(quick);
   ASSERT_GE(piece, 0);
   const double steered = quick.curve.pieces[piece].segment.alpha() + 0.25;
   if (!window->document().steerSegment(last, piece, steered).empty()) GTEST_SKIP() << "no G2 chain with that alpha";
@@ -139,9 +145,7 @@ TEST_F(MainWindowTest, ParameterChangeRefitsInTheBackgroundExceptEditedStrokes) 
   drawWithMouse(window->canvas(), wave(70));
   window->finishBackgroundFits();
   const FitResult& first = *window->document().strokes()[0].fit;
-  int piece = -1;
-  for (std::size_t i = 0; i < first.pieces.size() && piece < 0; ++i)
-    if (first.pieces[i].kind == PieceKind::kThreePoint && std::isfinite(first.curve.pieces[i].segment.alpha())) piece = static_cast<int>(i);
+  const int piece = firstSteerablePiece(first);
   ASSERT_GE(piece, 0);
   const bool steered = window->document().steerSegment(0, piece, first.curve.pieces[piece].segment.alpha() + 0.2).empty();
   FitOptions o = window->document().options();
