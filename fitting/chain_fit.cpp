@@ -324,12 +324,7 @@ void buildPanels(const Law& law, Panels<T>& p) {
   if constexpr (std::is_same_v<T, double>) p.prepare(law.length);
 }
 
-Eigen::Matrix2d rotation(double a) {
-  const double c = std::cos(a), s = std::sin(a);
-  Eigen::Matrix2d r;
-  r << c, -s, s, c;
-  return r;
-}
+Eigen::Matrix2d rotation(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix(); }
 
 // Where a point's foot is on a chain: position, unit tangent, curvature.
 struct FootFrame {
@@ -553,6 +548,23 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
   return true;
 }
 
+// Jacobian of the constraints (closure of a closed chain, a fixed end) by the unknowns;
+// no rows when there are none.
+Eigen::MatrixXd constraintJacobian(const Layout& layout, const ChainModel& m) {
+  const std::size_t n = layout.segments;
+  if (layout.closed) return m.pose_jacobian[n] - m.pose_jacobian[0];
+  if (layout.fix_end) return m.pose_jacobian[n].topRows(2);
+  return Eigen::MatrixXd::Zero(0, layout.size);
+}
+
+// The least-norm move of x that meets the linearized constraints (Jacobian cjac, values
+// `violation`), kept within the bounds.
+Eigen::VectorXd movedOntoConstraints(const Layout& layout, const Eigen::VectorXd& x, const Eigen::MatrixXd& cjac,
+                                     const Eigen::VectorXd& violation) {
+  const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-violation);
+  return (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+}
+
 // The points of the problem with their feet and residuals.
 class ChainProblem {
  public:
@@ -630,13 +642,7 @@ class ChainProblem {
     }
     for (std::size_t i = 0; i < layout_.segments; ++i)
       j(static_cast<Eigen::Index>(n_points + ends() + i), layout_.alpha[i]) = layout_.prior_weight;
-    cj.setZero(layout_.constraints(), layout_.size);
-    const std::size_t n = layout_.segments;
-    if (layout_.closed) {
-      cj = m.pose_jacobian[n] - m.pose_jacobian[0];
-    } else if (layout_.fix_end) {
-      cj = m.pose_jacobian[n].topRows(2);
-    }
+    cj = constraintJacobian(layout_, m);
   }
 
  private:
@@ -749,8 +755,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         // Second-order correction (Nocedal & Wright 18.3): the step met the linearized
         // constraints; the least-norm move back onto the constraints themselves avoids
         // rejecting good steps for their second-order violation (the Maratos effect).
-        const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-trial_c);
-        const Eigen::VectorXd corrected = (trial + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+        const Eigen::VectorXd corrected = movedOntoConstraints(layout, trial, cjac, trial_c);
         if (corrected.allFinite() && buildModel(layout, corrected, false, trial_model)) {
           trial = corrected;
           problem.evaluate(trial_model, trial_feet, trial_frames, trial_r, trial_c);
@@ -941,11 +946,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   // The iterations keep the constraints only as far as their merit asks; least-norm
   // moves back onto them (Newton on c = 0) close the joints to rounding.
   for (int k = 0; k < kRestoreSteps && c.size() > 0 && c.norm() > kRestored; ++k) {
-    Jacobian jac;
-    Eigen::MatrixXd cjac;
-    used.jacobian(model, used_feet, frames, jac, cjac);
-    const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-c);
-    const Eigen::VectorXd moved = (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+    const Eigen::VectorXd moved = movedOntoConstraints(layout, x, constraintJacobian(layout, model), c);
     ChainModel trial;
     if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
     x = moved;
@@ -984,19 +985,13 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     }
     return value;
   };
-  auto constraintJacobian = [&](const ChainModel& mm) -> Eigen::MatrixXd {
-    if (layout.closed) return mm.pose_jacobian[n] - mm.pose_jacobian[0];
-    return mm.pose_jacobian[n].topRows(2);
-  };
   Eigen::VectorXd exact;
   bool closed_exactly = false;  // the model moved: its residuals are evaluated again
   try {
     fitted = build(model, x);
     exact = exactConstraints(fitted);
     for (int k = 0; k < kRestoreSteps && exact.size() > 0 && exact.norm() > kExactlyClosed; ++k) {
-      const Eigen::MatrixXd cjac = constraintJacobian(model);
-      const Eigen::VectorXd back = cjac.transpose() * (cjac * cjac.transpose()).ldlt().solve(-exact);
-      const Eigen::VectorXd moved = (x + back).cwiseMax(layout.lower).cwiseMin(layout.upper);
+      const Eigen::VectorXd moved = movedOntoConstraints(layout, x, constraintJacobian(layout, model), exact);
       ChainModel trial;
       if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
       std::vector<LaSegment> closer = build(trial, moved);
