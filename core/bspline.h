@@ -10,6 +10,7 @@
 // both kinds share one evaluator. `controlIndex(k)` maps a stored control point to
 // its distinct one.
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -42,6 +43,16 @@ class CubicBSpline {
   std::vector<double> breaks() const;
   /// Knot span index i (knots[i] <= t < knots[i+1]) for t in [tMin, tMax] (a periodic t is wrapped).
   int span(double t) const;
+  /// The same for a t already wrapped (wrap()), found by walking from span `hint`: a step
+  /// or two for parameters taken in order along the curve (the smoothing's hot loops)
+  /// instead of a binary search.
+  int spanFrom(double wrapped, int hint) const {
+    const int last = static_cast<int>(control_.size()) - 1;
+    int i = std::clamp(hint, kDegree, last);
+    while (i < last && wrapped >= knots_[i + 1]) ++i;
+    while (i > kDegree && wrapped < knots_[i]) --i;
+    return i;
+  }
   double wrap(double t) const;  // into [tMin, tMax) for periodic, clamped for open
 
   /// Nonzero basis functions of span i at t and their derivatives up to `order` (<= 3):

@@ -70,14 +70,8 @@ class BasisTable {
   // Span of t (wrapped) starting from `hint`, and the four basis values there.
   int evaluate(double t, int hint, double value[4]) const {
     t = shape_.wrap(t);
-    const auto& knots = shape_.knots();
-    const int first = CubicBSpline::kDegree, last = static_cast<int>(coefficients_.size()) - 1;
-    int i = std::clamp(hint, first, last);
-    if (!(knots[i] <= t && (t < knots[i + 1] || i == last))) {
-      while (i < last && t >= knots[i + 1]) ++i;
-      while (i > first && t < knots[i]) --i;
-    }
-    const double u = t - knots[i];
+    const int i = shape_.spanFrom(t, hint);
+    const double u = t - shape_.knots()[i];
     for (int a = 0; a < 4; ++a) {
       const auto& c = coefficients_[i][a];
       value[a] = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
@@ -240,9 +234,7 @@ void correctParameters(const CubicBSpline& spline, const std::vector<Vec2>& pts,
   int span = first;  // walks along with the points (they come in order)
   auto eval = [&](double ti, Vec2& c0, Vec2& c1, Vec2& c2) {
     ti = spline.wrap(ti);
-    while (span < last && ti >= knots[span + 1]) ++span;
-    while (span > first && ti < knots[span]) --span;
-    const int i = span;
+    const int i = span = spline.spanFrom(ti, span);
     const double u = ti - knots[i];
     const auto& c = poly[i - first];
     c0 = c[0] + u * (c[1] + u * (c[2] + u * c[3]));
@@ -290,9 +282,9 @@ bool attempt(const std::vector<Vec2>& pts, const std::vector<double>& breaks, bo
 
 }  // namespace
 
-namespace {
-
-SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
+SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
+  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
+  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
   const int min_spans = closed ? 4 : 1;
   std::vector<double> breaks;
   const int spans0 = std::max(min_spans, options.initial_spans);
@@ -419,14 +411,6 @@ SmoothingResult smoothPoints(const std::vector<Vec2>& pts, bool closed, const Sm
                       : "tolerance not reached with " + std::to_string(breaks.size() - 1) + " spans (max error " +
                             std::to_string(current.max_error) + ")"};
   return result;
-}
-
-}  // namespace
-
-SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
-  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
-  if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
-  return smoothPoints(pts, closed, options);
 }
 
 }  // namespace la
