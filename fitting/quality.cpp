@@ -37,7 +37,7 @@ class EdgeGrid {
     }
     lo_ = hi_ = poly.front();
     double length = 0.0;
-    for (int e = 0; e < edges; ++e) length += (poly[e + 1] - poly[e]).norm();
+    for (const Vec2& d : direction_) length += d.norm();
     for (const Vec2& q : poly) lo_ = lo_.cwiseMin(q), hi_ = hi_.cwiseMax(q);
     const Vec2 extent = hi_ - lo_;
     cell_ = std::max({kEdgesPerCell * length / std::max(edges, 1), extent.maxCoeff() / kMaxCellsPerAxis, 1e-300});
@@ -64,17 +64,17 @@ class EdgeGrid {
     return (ap - t * direction_[e]).squaredNorm();
   }
 
-  // Distance from p to the nearest edge, which is written to `edge`. `bound` is the
-  // distance to some edge already known (`edge` that one), which lets the search stop
-  // early: after each ring of cells, once nothing unsearched can be closer.
-  double distance(const Vec2& p, double bound, int& edge) const {
+  // Distance from p to the nearest edge, which is written to `edge`. `bound2` is the
+  // squared distance to some edge already known (`edge` that one), which lets the search
+  // stop early: after each ring of cells, once nothing unsearched can be closer.
+  double distance(const Vec2& p, double bound2, int& edge) const {
     // The point's cell (possibly outside the grid) and its Chebyshev distance to the grid.
     constexpr double kFar = 1e9;  // cells; keeps the integer arithmetic in range
     const double fx = (p.x() - lo_.x()) / cell_, fy = (p.y() - lo_.y()) / cell_;
     const int px = static_cast<int>(std::clamp(std::floor(fx), -kFar, kFar));
     const int py = static_cast<int>(std::clamp(std::floor(fy), -kFar, kFar));
     const int outside = std::max({0, -px, px - (nx_ - 1), -py, py - (ny_ - 1)});
-    double best2 = bound * bound;
+    double best2 = bound2;
     auto visit = [&](int x, int y) {
       const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
       for (int k = start_[c]; k < start_[c + 1]; ++k) {
@@ -146,7 +146,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
       const double d2 = grid.distance2(points[i], e);
       if (d2 < bound2) bound2 = d2, edge = e;
     }
-    out[i] = grid.distance(points[i], std::sqrt(bound2), edge);
+    out[i] = grid.distance(points[i], bound2, edge);
   }
   return out;
 }
