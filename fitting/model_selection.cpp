@@ -33,6 +33,11 @@ std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain) {
 
 double signOf(const Piece& p) { return p.turning < 0.0 ? -1.0 : 1.0; }
 
+// A piece with a zero-curvature end needs alpha < 0: at most kZeroEndAlpha then.
+void fixZeroEnd(Piece& p) {
+  if (p.kappa0 == 0.0 || p.kappa1 == 0.0) p.alpha = std::min(p.alpha, kZeroEndAlpha);
+}
+
 // The chain from a start pose and pieces; nullopt if a piece is not an LA segment
 // (curvatures of opposite signs, a zero end with alpha >= 0, no turning).
 std::optional<std::vector<LaSegment>> rebuild(Vec2 start, double theta, const std::vector<Piece>& pieces) {
@@ -82,9 +87,8 @@ std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector
   if (signOf(a) != signOf(b) || a.kappa1 == 0.0) return std::nullopt;  // an inflection: no single law
   if (std::abs(a.turning + b.turning) > max_turning) return std::nullopt;
   const double la = chain[j - 1].length(), lb = chain[j].length();
-  double alpha = (la * a.alpha + lb * b.alpha) / (la + lb);
-  if (a.kappa0 == 0.0 || b.kappa1 == 0.0) alpha = std::min(alpha, kZeroEndAlpha);
-  e.pieces[j - 1] = {alpha, a.kappa0, b.kappa1, a.turning + b.turning};
+  e.pieces[j - 1] = {(la * a.alpha + lb * b.alpha) / (la + lb), a.kappa0, b.kappa1, a.turning + b.turning};
+  fixZeroEnd(e.pieces[j - 1]);
   e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(j));
   for (ChainFoot& f : e.feet) {
     if (f.segment == j - 1) f.u = f.u * la / (la + lb);
@@ -102,9 +106,6 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
   if (n < (closed ? 4u : 2u)) return std::nullopt;
   Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
   const Piece gone = e.pieces[i];
-  auto fixZeroEnd = [](Piece& p) {
-    if (p.kappa0 == 0.0 || p.kappa1 == 0.0) p.alpha = std::min(p.alpha, kZeroEndAlpha);
-  };
   if (!closed && (i == 0 || i + 1 == n)) {
     // An end sliver: the neighbour takes its place up to the stroke's end.
     Piece& p = e.pieces[i == 0 ? 1 : n - 2];
@@ -112,10 +113,6 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
     if (free_end == 0.0 || (free_end < 0.0) != (signOf(p) < 0.0))
       free_end = signOf(p) * kNewKappaFraction * std::abs(i == 0 ? p.kappa1 : p.kappa0);
     if (signOf(gone) == signOf(p)) p.turning += gone.turning;
-    if (i == 0) {
-      e.start = chain[1].start();
-      e.theta = chain[1].theta0();
-    }
   } else {
     const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
     Piece& a = e.pieces[before];
@@ -128,13 +125,10 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
     a.kappa1 = b.kappa0 = kappa;
     a.turning += 0.5 * gone.turning;
     b.turning += 0.5 * gone.turning;
-    if ((a.turning < 0.0) != (signOf(a) < 0.0) || (b.turning < 0.0) != (signOf(b) < 0.0)) return std::nullopt;
-    fixZeroEnd(a);
-    fixZeroEnd(b);
-    if (closed && i == 0) {  // the chain now starts at the old segment 1
-      e.start = chain[1].start();
-      e.theta = chain[1].theta0();
-    }
+  }
+  if (i == 0) {  // the chain now starts at the old segment 1
+    e.start = chain[1].start();
+    e.theta = chain[1].theta0();
   }
   e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i));
   for (Piece& p : e.pieces) fixZeroEnd(p);
