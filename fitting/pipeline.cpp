@@ -138,6 +138,15 @@ Noise noiseOf(const std::vector<Vec2>& p) {
   n.on_grid = on_grid;
   return n;
 }
+// Stage 6's options (also for closing stage 7's chain and the user's edits).
+G2Options g2OptionsOf(const FitOptions& options, double diagonal) {
+  G2Options g2;
+  g2.method = options.g2;
+  g2.threshold = options.g2_threshold;
+  g2.diagonal = diagonal;
+  return g2;
+}
+
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 struct Part {
@@ -586,10 +595,7 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
 
     // Stage 6.
     t0 = Clock::now();
-    G2Options g2;
-    g2.method = options.g2;
-    g2.threshold = options.g2_threshold;
-    g2.diagonal = diag;
+    const G2Options g2 = g2OptionsOf(options, diag);
     G2Result res = makeG2(chain, g2);
     // A joint whose gap no tangent angle closes sits between pieces whose alphas reach
     // too few triangle shapes: move those alphas halfway towards the widest-range alpha
@@ -707,20 +713,13 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
   }
 }
 
-struct PartDeviation {
-  double max = 0.0, rms = 0.0;
-};
-PartDeviation deviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
+// The largest distance from the points to a part's chain.
+double maxDeviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
   Curve curve;
   for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
-  PartDeviation out;
-  double sum = 0.0;
-  for (double d : distancesToCurve(curve, points, diag, kRefineResolution)) {
-    out.max = std::max(out.max, d);
-    sum += d * d;
-  }
-  out.rms = points.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(points.size()));
-  return out;
+  double worst = 0.0;
+  for (double d : distancesToCurve(curve, points, diag, kRefineResolution)) worst = std::max(worst, d);
+  return worst;
 }
 
 // The chain stage 7 starts from where stages 5-6 found none (a piece whose tangents form
@@ -939,10 +938,7 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   if (polished.report.status == SolveStatus::kBadInput) return;
   std::vector<LaSegment> segments = polished.segments;
   if (co.closed || co.fix_end) {
-    G2Options g2;
-    g2.method = options.g2;
-    g2.threshold = options.g2_threshold;
-    g2.diagonal = diag;
+    const G2Options g2 = g2OptionsOf(options, diag);
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
@@ -950,7 +946,7 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     // Outside the tolerance: kept if closer to the points than the G2 chain it started
     // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
     // (a kink where the user drew none is worse than a miss, which the figures report).
-    fit.max_dev = deviationOf(fit.segments, part.points, diag).max;
+    fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }
   fit.max_dev = polished.max_distance;
@@ -998,7 +994,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     // first, then the deviation from the part's own points).
     auto misses = [&] { return !fit.g2.usable() || !(fit.max_dev <= r.tolerance); };
     auto measure = [&](PartFit& f) {
-      if (std::isnan(f.max_dev)) f.max_dev = deviationOf(f.segments, part.points, diag).max;
+      if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
     };
     auto consider = [&](PartFit other) {
       polish(other);
@@ -1114,10 +1110,7 @@ std::optional<FitResult> resolvePart(const FitResult& fit, std::size_t piece, co
     if (why) *why = refused;
     return std::nullopt;
   }
-  G2Options g2;
-  g2.method = options.g2;
-  g2.threshold = options.g2_threshold;
-  g2.diagonal = fit.quality.diagonal;
+  const G2Options g2 = g2OptionsOf(options, fit.quality.diagonal);
   const G2Result res = makeG2(chain, g2);
   if (res.segments.empty() || !res.report.usable()) {
     if (why) *why = "no G2 curve through that change: " + res.report.message;
