@@ -1087,11 +1087,12 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
     g.rotations.push_back(rotation(s.theta0()));
     g.total_length += s.length();
   }
-  if (feet.size() != points.size()) feet = coarseFeet(g, points);
+  const bool given = feet.size() == points.size();
+  if (!given) feet = coarseFeet(g, points);
   distance.resize(points.size());
   for (std::size_t k = 0; k < points.size(); ++k)
     distance[k] = (points[k] - projectFoot(g, points[k], feet[k], kFootSteps + 4).point).norm();
-  refineOutlyingFeet(g, points, feet, distance);
+  if (given) refineOutlyingFeet(g, points, feet, distance);  // (coarse feet are the search it would repeat)
 }
 
 Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end) {
