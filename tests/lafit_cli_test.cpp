@@ -213,6 +213,20 @@ class LafitCli : public ::testing::Test {
     fs::permissions(at(name), fs::perms::owner_read | fs::perms::owner_write, fs::perm_options::add);
   }
 
+  /// Runs lafit with `args` and expects exit `status` and every fragment in its stderr.
+  void expectRefused(const std::vector<std::string>& args, int status, const std::vector<std::string>& fragments) const {
+    const Outcome r = lafit(args);
+    EXPECT_EQ(r.status, status) << r;
+    for (const std::string& fragment : fragments) EXPECT_TRUE(contains(r.err, fragment)) << r;
+  }
+
+  /// Fits `file` with -o curve.json (`text` written to it first unless empty) and
+  /// expects the input-error status and every fragment in the message.
+  void expectInputError(const std::string& file, const std::string& text, const std::vector<std::string>& fragments) const {
+    if (!text.empty()) write(file, text);
+    expectRefused({"fit", file, "-o", "curve.json"}, kExitInputError, fragments);
+  }
+
   fs::path m_root, m_work;
 };
 
@@ -562,43 +576,25 @@ TEST_F(LafitCli, FitOfSeveralStrokesGivesAnErrorEntryForADotAndFitsTheRestInOrde
 // ------------------------------------------------------------------ fit: bad input
 
 TEST_F(LafitCli, MissingInputFileIsReportedByName) {
-  const Outcome r = lafit({"fit", "nowhere.csv", "-o", "curve.json"});
-  EXPECT_EQ(r.status, kExitInputError) << r;
-  EXPECT_TRUE(contains(r.err, "cannot open nowhere.csv")) << r;
+  expectInputError("nowhere.csv", "", {"cannot open nowhere.csv"});
   EXPECT_FALSE(fs::exists(at("curve.json")));
 }
 
 TEST_F(LafitCli, UnparsableLineIsReportedWithFileAndLineNumber) {
-  write("bad.csv", "0,0\n1,0.5\n2,1.5\n3,x2\n4,3\n");
-  const Outcome r = lafit({"fit", "bad.csv", "-o", "curve.json"});
-  EXPECT_EQ(r.status, kExitInputError) << r;
-  EXPECT_TRUE(contains(r.err, "bad.csv:4:")) << r;
-  EXPECT_TRUE(contains(r.err, "x2")) << r;
+  expectInputError("bad.csv", "0,0\n1,0.5\n2,1.5\n3,x2\n4,3\n", {"bad.csv:4:", "x2"});
   EXPECT_FALSE(fs::exists(at("curve.json")));
 }
 
 TEST_F(LafitCli, NaNIsReportedWithFileAndLineNumber) {
-  write("nan.csv", "0,0\n1,1\nnan,2\n3,1\n4,0\n");
-  const Outcome r = lafit({"fit", "nan.csv", "-o", "curve.json"});
-  EXPECT_EQ(r.status, kExitInputError) << r;
-  EXPECT_TRUE(contains(r.err, "nan.csv:3:")) << r;
-  EXPECT_TRUE(contains(r.err, "NaN")) << r;
+  expectInputError("nan.csv", "0,0\n1,1\nnan,2\n3,1\n4,0\n", {"nan.csv:3:", "NaN"});
 }
 
 TEST_F(LafitCli, FewerThanThreeDistinctPointsIsReportedByFile) {
-  write("few.csv", "0,0\n0,0\n1,1\n1,1\n");
-  const Outcome r = lafit({"fit", "few.csv", "-o", "curve.json"});
-  EXPECT_EQ(r.status, kExitInputError) << r;
-  EXPECT_TRUE(contains(r.err, "few.csv")) << r;
-  EXPECT_TRUE(contains(r.err, "fewer than 3 distinct")) << r;
+  expectInputError("few.csv", "0,0\n0,0\n1,1\n1,1\n", {"few.csv", "fewer than 3 distinct"});
 }
 
 TEST_F(LafitCli, CollinearPointsAreReportedByFile) {
-  write("line.csv", "0,0\n1,1\n2,2\n3,3\n4,4\n");
-  const Outcome r = lafit({"fit", "line.csv", "-o", "curve.json"});
-  EXPECT_EQ(r.status, kExitInputError) << r;
-  EXPECT_TRUE(contains(r.err, "line.csv")) << r;
-  EXPECT_TRUE(contains(r.err, "straight line")) << r;
+  expectInputError("line.csv", "0,0\n1,1\n2,2\n3,3\n4,4\n", {"line.csv", "straight line"});
 }
 
 // ------------------------------------------------------------------ fit: atomic writes
@@ -653,26 +649,17 @@ TEST_F(LafitCli, SuccessfulRunLeavesOnlyItsOutputs) {
 
 TEST_F(LafitCli, UnknownOptionIsAUsageError) {
   copyData(kBrace, "brace.csv");
-  const Outcome r = lafit({"fit", "brace.csv", "--frobnicate"});
-  EXPECT_EQ(r.status, kExitUsage) << r;
-  EXPECT_TRUE(contains(r.err, "unknown option --frobnicate")) << r;
-  EXPECT_TRUE(contains(r.err, "lafit fit --help")) << r;
+  expectRefused({"fit", "brace.csv", "--frobnicate"}, kExitUsage, {"unknown option --frobnicate", "lafit fit --help"});
 }
 
 TEST_F(LafitCli, BadG2MethodIsAUsageError) {
   copyData(kBrace, "brace.csv");
-  const Outcome r = lafit({"fit", "brace.csv", "--g2", "sideways"});
-  EXPECT_EQ(r.status, kExitUsage) << r;
-  EXPECT_TRUE(contains(r.err, "--g2")) << r;
-  EXPECT_TRUE(contains(r.err, "sideways")) << r;
+  expectRefused({"fit", "brace.csv", "--g2", "sideways"}, kExitUsage, {"--g2", "sideways"});
 }
 
 TEST_F(LafitCli, ClosedWithNoCloseIsAUsageError) {
   copyData(kBrace, "brace.csv");
-  const Outcome r = lafit({"fit", "brace.csv", "--closed", "--no-close"});
-  EXPECT_EQ(r.status, kExitUsage) << r;
-  EXPECT_TRUE(contains(r.err, "--closed")) << r;
-  EXPECT_TRUE(contains(r.err, "--no-close")) << r;
+  expectRefused({"fit", "brace.csv", "--closed", "--no-close"}, kExitUsage, {"--closed", "--no-close"});
 }
 
 // ------------------------------------------------------------------ help
