@@ -64,12 +64,11 @@ constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0
 // trading closure for fit.
 constexpr double kConstraintMerit = 1e8;
 constexpr double kNegligibleDecrease = 0.1;
-// Closing the constraints after the iterations: at most this many steps, until their
-// violation (normalized units) is below kRestored.
+// Closing the constraints after the iterations (which keep them only as far as their
+// merit asks): at most this many Newton steps on the exact chain, until its violation
+// (normalized units) is below kExactlyClosed. LaSegment's positions are good to ~1e-10
+// of a length, and a tighter target only repeats its quadrature.
 constexpr int kRestoreSteps = 5;
-constexpr double kRestored = 1e-12;
-// The exact chain is closed to this (normalized units): LaSegment's positions are good
-// to ~1e-10 of a length, and a tighter target only repeats its quadrature.
 constexpr double kExactlyClosed = 1e-11;
 // A chain meets its constraints (joints, closure, a fixed end) below this violation
 // (normalized units); snapToJoints closes what is left exactly.
@@ -943,16 +942,6 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
                                       x, used_feet, model, iterations);
   used.evaluate(model, used_feet, frames, r, c);
-  // The iterations keep the constraints only as far as their merit asks; least-norm
-  // moves back onto them (Newton on c = 0) close the joints to rounding.
-  for (int k = 0; k < kRestoreSteps && c.size() > 0 && c.norm() > kRestored; ++k) {
-    const Eigen::VectorXd moved = movedOntoConstraints(layout, x, constraintJacobian(layout, model), c);
-    ChainModel trial;
-    if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
-    x = moved;
-    std::swap(model, trial);
-    used.evaluate(model, used_feet, frames, r, c);
-  }
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.
   std::vector<LaSegment> fitted;
@@ -970,9 +959,9 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     }
     return chain;
   };
-  // The constraints on that exact chain (normalized units). The model is within ~1e-6 of
-  // a segment's length of it, so the model's closure leaves the exact chain open by
-  // that much: Newton steps on the exact values (the model's Jacobian) close it.
+  // The constraints on that exact chain (normalized units), closed by Newton steps on
+  // its exact values with the model's Jacobian: the model is only within ~1e-6 of a
+  // segment's length of the exact chain, so closing the model would not close it.
   auto exactConstraints = [&](const std::vector<LaSegment>& chain) {
     const Vec2 end = (chain.back().end() - origin) / scale;
     Eigen::VectorXd value(layout.constraints());
