@@ -675,7 +675,6 @@ PartFit fitPart(const Part& part, double tol, const Noise& noise, double diag, c
       seg.splits = std::move(splits);
       continue;
     }
-    if (any && !res.segments.empty()) warnings.push_back("some segments stay further than the tolerance from the points");
     out.g2 = res.report;
     std::vector<PieceReport> spans = reports;  // before the fallback below drops pieces
     if (res.segments.empty()) {
@@ -951,7 +950,6 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   }
   fit.max_dev = polished.max_distance;
   fit.warnings.clear();
-  if (polished.max_distance > tol) fit.warnings.push_back("some segments stay further than the tolerance from the points");
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
   fit.reports = reportsOf(fit.segments, polished.feet, fit.parameters, *fit.spline, part.closed);
@@ -972,7 +970,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const double floor = noise.floor;
   if (r.tolerance < floor) {
     r.warnings.push_back("tolerance raised from " + std::to_string(r.tolerance) + " to " + std::to_string(floor) +
-                         ": the points are noisier than that (no curve comes closer to all of them)");
+                         ": the noise floor of the points (their estimated noise and pixel grid)");
     r.tolerance = floor;
   }
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
@@ -1075,6 +1073,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const auto tq = Clock::now();
   r.quality = measureQuality(r.curve, r.cleaned.points);
   r.timings.quality_ms = msSince(tq);
+  // Said from the measured figure, whichever stage or start the curve came from.
+  if (r.quality.max_dev > r.tolerance)
+    r.warnings.push_back("the curve misses the tolerance: it passes up to " + std::to_string(r.quality.max_dev) +
+                         " from the points, the tolerance is " + std::to_string(r.tolerance));
   r.timings.total_ms = msSince(start);
   return r;
 }

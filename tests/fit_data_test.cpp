@@ -126,6 +126,12 @@ bool raisedTolerance(const FitResult& r) {
   return false;
 }
 
+bool saysItMisses(const FitResult& r) {
+  for (const std::string& w : r.warnings)
+    if (w.find("misses the tolerance") != std::string::npos) return true;
+  return false;
+}
+
 std::string warningsOf(const FitResult& r) {
   std::string s;
   for (const std::string& w : r.warnings) s += "\n    warning: " + w;
@@ -220,6 +226,9 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
           << where << ": g1 gap " << r.quality.g1_gap << " >= " << kG1Threshold;
       EXPECT_TRUE(check(r.quality.g2_gap < kG2Threshold, "g2 gap"))
           << where << ": g2 gap " << r.quality.g2_gap << " >= " << kG2Threshold;
+      // A miss is never silent: the result says so in its warnings.
+      EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance || saysItMisses(r), "silent miss"))
+          << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " without a warning";
       if (within_tolerance) {
         EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance), "max_dev > tolerance"))
             << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
