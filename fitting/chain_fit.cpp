@@ -57,6 +57,9 @@ constexpr int kCoarseFeetSamples = 64;
 // A point further than this many times the root mean square distance has its foot
 // looked for again over the whole chain (refineOutlyingFeet).
 constexpr double kOutlyingFoot = 3.0;
+// A bin of points stands in by its centroid where the chain's sagitta across it is at
+// most this fraction of the noise (the bias then adds at most 1% to a point's variance).
+constexpr double kBinBias = 0.1;
 // Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
 constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0, kMaxLambda = 1e10;
 // Weight of a constraint violation (squared) in the merit function that accepts steps:
@@ -907,24 +910,52 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   if (!buildModel(layout, x, true, model)) return refuse("the initial chain cannot be modelled");
   std::vector<ChainFoot> feet = initial_feet.empty() ? coarseFeet(model, points) : initial_feet;
 
-  // The iterations use all points, or an even subsample (the ends kept): the chain has a
-  // few dozen unknowns, which a few hundred points pin down.
+  // The iterations use all points or, beyond max_points, bins of consecutive points (the
+  // ends alone): the chain has a few dozen unknowns, which a few hundred points pin
+  // down. A bin stands in by its centroid (weighted by the squared weights), with the
+  // root of its points' summed squared weights as its weight: where the chain is
+  // straight across the bin, its points' sum of squared distances is the centroid's
+  // times that plus a constant, so the fit is the all-points least-squares fit at the
+  // cost of a subsample (an even subsample of every fourth point fitted the ground-truth
+  // chains 2% worse in the sum of squares than the all-points fit, and missed their
+  // alphas by 0.3 or more 36 times in 78 instead of about 27). Where the chain bends
+  // across a bin by more than kBinBias of the noise (the centroid would sit inside the
+  // bend), or the points have no noise to average, the picked point stands alone (an
+  // even subsample).
   const std::size_t m = points.size();
-  std::vector<std::size_t> pick;
   const std::size_t used_count = options.max_points > 2 ? std::min(m, options.max_points) : m;
-  for (std::size_t k = 0; k < used_count; ++k) pick.push_back(used_count == m ? k : k * (m - 1) / (used_count - 1));
+  // An even subsample (the ends kept), each picked point with the bin of its nearest
+  // neighbours: [bin[j], bin[j + 1]).
+  std::vector<std::size_t> pick, bin;
+  for (std::size_t j = 0; j < used_count; ++j) pick.push_back(used_count == m ? j : j * (m - 1) / (used_count - 1));
+  bin.push_back(0);
+  for (std::size_t j = 0; j + 1 < used_count; ++j) bin.push_back(j == 0 ? 1 : j + 2 == used_count ? m - 1 : (pick[j] + pick[j + 1]) / 2 + 1);
+  bin.push_back(m);
+  auto weight = [&](std::size_t k) { return options.weights.empty() ? 1.0 : options.weights[k]; };
+  const double noise = options.noise / scale;
   std::vector<Vec2> used_points;
   std::vector<ChainFoot> used_feet;
-  std::vector<double> used_distance;
-  for (std::size_t k : pick) {
-    used_points.push_back(points[k]);
-    used_feet.push_back(feet[k]);
+  std::vector<double> used_distance, used_weights;
+  for (std::size_t j = 0; j < used_count; ++j) {
+    const std::size_t k = pick[j], from = bin[j], to = bin[j + 1];
+    ChainFoot foot = feet[k];
     // the given feet may be rough (from the spline's parameters, or an edited chain's)
-    used_distance.push_back((projectFoot(model, points[k], used_feet.back(), kFirstFootSteps).point - points[k]).norm());
+    const FootFrame f = projectFoot(model, points[k], foot, kFirstFootSteps);
+    const double sagitta = std::abs(f.kappa) * (points[to - 1] - points[from]).squaredNorm() / 8.0;
+    Vec2 point = points[k];
+    double w2 = weight(k) * weight(k), distance = (f.point - point).norm();
+    if (to - from > 1 && sagitta <= kBinBias * noise) {
+      point = Vec2::Zero(), w2 = 0.0;
+      for (std::size_t i = from; i < to; ++i) point += weight(i) * weight(i) * points[i], w2 += weight(i) * weight(i);
+      point = w2 > 0.0 ? Vec2(point / w2) : points[k];
+      distance = (projectFoot(model, point, foot, kFootSteps).point - point).norm();
+    }
+    used_points.push_back(point);
+    used_weights.push_back(std::sqrt(w2));
+    used_distance.push_back(distance);
+    used_feet.push_back(foot);
   }
   refineOutlyingFeet(model, used_points, used_feet, used_distance, !options.closed);
-  std::vector<double> used_weights;
-  for (std::size_t k : pick) used_weights.push_back(options.weights.empty() ? 1.0 : options.weights[k]);
   const ChainProblem used(layout, used_points, used_weights);
   std::vector<FootFrame> frames;
   Eigen::VectorXd r, c;
@@ -936,7 +967,6 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
 
   // A step that lowers the sum of squared distances by less than a fraction of one
   // point's noise variance moves the chain by less than the noise can tell.
-  const double noise = options.noise / scale;
   const double least = kNegligibleDecrease * noise * noise;
   int iterations = 0;
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,

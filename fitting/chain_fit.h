@@ -39,8 +39,8 @@
 // interpolation; the Jacobian of a point is that of its own segment's local curve plus
 // the rigid motion the earlier segments give its start. Levenberg-Marquardt with the
 // bounds and constraints in each step's KKT system, geodesic acceleration and a
-// second-order correction, on an even subsample of the points (the unknowns are few:
-// about 3 per segment).
+// second-order correction, on bins of the points (the unknowns are few: about 3 per
+// segment; ChainFitOptions::max_points).
 
 #include <vector>
 
@@ -69,9 +69,10 @@ struct ChainFitOptions {
   int max_iterations = 30;  // Levenberg-Marquardt steps
   /// Stop when a step lowers the cost by less than this fraction.
   double relative_decrease = 1e-7;
-  /// Iterate on at most this many points (evenly spaced, the ends kept; 0: all): the
-  /// chain has a few dozen unknowns, which a few hundred points pin down. Distances are
-  /// reported for every point.
+  /// Iterate on at most this many points (0: all): an even subsample, the ends kept,
+  /// each picked point standing in for its bin of neighbours by their centroid where the
+  /// noise (below) is given and the chain is nearly straight across the bin, so the fit
+  /// is the all-points fit. Distances are reported for every point.
   std::size_t max_points = 0;
   /// A broad prior on every alpha, N(alpha_prior, alpha_spread^2), weighed against the
   /// points by their noise (standard deviation, world units; 0: no prior). Where the

@@ -138,8 +138,8 @@ void BM_StageG2(benchmark::State& state) {
 BENCHMARK(BM_StageG2)->Unit(benchmark::kMicrosecond);
 
 void BM_StageChainFit(benchmark::State& state) {
-  // Stage 7's least-squares fit alone, as the pipeline calls it (an even subsample of 300
-  // points, 8 steps), from the chain stages 1-6 make.
+  // Stage 7's least-squares fit alone, as the pipeline calls it (300 bins of the points,
+  // 8 steps), from the chain stages 1-6 make.
   FitOptions paper;
   paper.polish = false;
   const FitResult start = fitStroke(chainStroke(1000), paper);
