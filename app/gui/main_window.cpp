@@ -395,8 +395,13 @@ void MainWindow::fitInBackground(std::size_t index) {
   auto* watcher = new QFutureWatcher<BackgroundFit>(this);
   connect(watcher, &QFutureWatcher<BackgroundFit>::finished, this, [this, watcher] { takeBackgroundFit(watcher); });
   m_background.push_back(watcher);
-  watcher->setFuture(QtConcurrent::run([raw = s.raw, id = s.id, options = m_document.options()] {
-    BackgroundFit out{id, options, std::nullopt, {}};
+  auto superseded = std::make_shared<std::atomic<bool>>(false);
+  if (auto& newest = m_newest_fit[s.id]) newest->store(true);
+  m_newest_fit[s.id] = superseded;
+  watcher->setFuture(QtConcurrent::run([raw = s.raw, id = s.id, options = m_document.options(), superseded] {
+    BackgroundFit out{id, options, std::nullopt, {}, superseded};
+    // (a fit already running finishes; Document::completeFit drops it if its options are stale)
+    if ((out.superseded = superseded->load())) return out;
     try {
       out.fit = fitStroke(raw, options);
     } catch (const std::exception& e) {
@@ -416,6 +421,12 @@ void MainWindow::takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher) {
   m_background.erase(it);
   BackgroundFit done = watcher->result();
   watcher->deleteLater();
+  if (const auto newest = m_newest_fit.find(done.id); newest != m_newest_fit.end() && newest->second == done.superseded_flag)
+    m_newest_fit.erase(newest);
+  if (done.superseded) {
+    ++m_superseded_fits;
+    return;
+  }
   const int stroke = m_selected_stroke, piece = m_selected_piece;
   if (!m_document.completeFit(done.id, done.options, std::move(done.fit), done.error)) return;
   documentChanged();

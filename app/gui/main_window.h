@@ -7,6 +7,10 @@
 #include <QFutureWatcher>
 #include <QMainWindow>
 #include <QString>
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <memory>
 #include <vector>
 
 #include "app/gui/document.h"
@@ -66,9 +70,13 @@ class MainWindow : public QMainWindow {
   /// and replaces it when done (a hard stroke takes a few hundred ms). This waits for
   /// those still running and takes their results (saving, exporting and tests use it).
   void finishBackgroundFits();
-  /// Starts stage 7 of provisional stroke `index` off the UI thread.
+  /// Starts stage 7 of provisional stroke `index` off the UI thread. A fit of that stroke
+  /// still waiting for a thread is dropped: only the newest request's result can apply.
   void fitInBackground(std::size_t index);
   void fitProvisionalInBackground();  // of every provisional stroke
+  /// Background fits dropped before they ran because a newer one for the same stroke
+  /// was requested (rapid parameter changes).
+  int supersededBackgroundFits() const { return m_superseded_fits; }
 
  private:
   struct BackgroundFit {
@@ -76,6 +84,8 @@ class MainWindow : public QMainWindow {
     FitOptions options;
     std::optional<FitResult> fit;
     std::string error;
+    std::shared_ptr<std::atomic<bool>> superseded_flag;  // set when a newer fit of the stroke is requested
+    bool superseded = false;                             // so it did not run
   };
   void takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher);
   void buildMenus();
@@ -103,6 +113,9 @@ class MainWindow : public QMainWindow {
   QString m_path;
   bool m_dirty = false;
   std::vector<QFutureWatcher<BackgroundFit>*> m_background;  // running, in start order
+  // Per stroke id, the flag of its newest background fit; set when a newer one is asked for.
+  std::map<std::uint64_t, std::shared_ptr<std::atomic<bool>>> m_newest_fit;
+  int m_superseded_fits = 0;
 };
 
 }  // namespace la::gui

@@ -8,6 +8,8 @@
 #include <QApplication>
 #include <QFile>
 #include <QPointingDevice>
+#include <QSemaphore>
+#include <QThreadPool>
 #include <QStandardPaths>
 #include <QTabletEvent>
 #include <QTemporaryDir>
@@ -162,6 +164,37 @@ TEST_F(MainWindowTest, ParameterChangeRefitsInTheBackgroundExceptEditedStrokes) 
   EXPECT_EQ(strokes[1].fit->quality.segments, direct.quality.segments);
   EXPECT_DOUBLE_EQ(strokes[1].fit->quality.max_dev, direct.quality.max_dev);
   EXPECT_DOUBLE_EQ(strokes[1].fit->tolerance, direct.tolerance);
+}
+
+// Parameter changes faster than stage 7 (here: every worker thread held while five
+// changes come in) run only the newest background fit of each stroke; the others are
+// dropped before they start, and every stroke ends as fitStroke with the last options.
+TEST_F(MainWindowTest, RapidParameterChangesRunOnlyTheNewestBackgroundFit) {
+  drawWithMouse(window->canvas(), wave());
+  drawWithMouse(window->canvas(), wave(70));
+  window->finishBackgroundFits();
+  QThreadPool* pool = QThreadPool::globalInstance();
+  QSemaphore held;
+  const int threads = pool->maxThreadCount();
+  for (int i = 0; i < threads; ++i) pool->start([&held] { held.acquire(); });
+  FitOptions o = window->document().options();
+  constexpr int kChanges = 5;
+  for (int k = 1; k <= kChanges; ++k) {
+    o.tolerance_fraction = 0.004 + 0.0002 * k;
+    window->parameters()->setOptions(o);
+    emit window->parameters()->optionsChanged(o);
+  }
+  held.release(threads);
+  window->finishBackgroundFits();
+  EXPECT_EQ(window->supersededBackgroundFits(), (kChanges - 1) * 2);
+  for (const DocumentStroke& s : window->document().strokes()) {
+    EXPECT_FALSE(s.provisional);
+    ASSERT_TRUE(s.fit.has_value()) << s.error;
+    const FitResult direct = fitStroke(s.raw, o);
+    EXPECT_EQ(s.fit->quality.segments, direct.quality.segments);
+    EXPECT_DOUBLE_EQ(s.fit->quality.max_dev, direct.quality.max_dev);
+    EXPECT_DOUBLE_EQ(s.fit->tolerance, direct.tolerance);
+  }
 }
 
 TEST_F(MainWindowTest, PenStrokeKeepsPressureAndTime) {
