@@ -208,6 +208,62 @@ TEST(PointFileCsv, MissingFileSaysCannotOpen) {
   EXPECT_NE(directory.find("cannot open"), std::string::npos) << directory;
 }
 
+TEST(PointFileCsv, LoneCarriageReturnsEndLines) {
+  // Classic Mac OS line ends: read as one line, the points ran together into a row of
+  // numbers (two points became one with a time stamp and a pressure).
+  const std::vector<Stroke> strokes = parseStrokes("0,0\r1,1\r\r2,0\r3,1\r", "mac.csv");
+  ASSERT_EQ(strokes.size(), 2u);
+  ASSERT_EQ(strokes[0].samples.size(), 2u);
+  EXPECT_EQ(strokes[0].samples[1].p, Vec2(1, 1));
+  EXPECT_TRUE(std::isnan(strokes[0].samples[0].t));
+  EXPECT_EQ(strokes[1].samples.size(), 2u);
+  // Mixed line ends in one file, and line numbers counted across them.
+  EXPECT_EQ(parseStrokes("0,0\r\n1,1\r2,0\n3,1\r\n", "mixed.csv")[0].samples.size(), 4u);
+  expectError("0,0\r1,1\r\n2,x\n", "bad.csv", {"bad.csv:3:", "non-numeric", "x"});
+}
+
+TEST(PointFileCsv, DecimalCommasAreRefusedNotReadAsFourColumns) {
+  // "1,5;2,5" is (1.5, 2.5) with decimal commas; read field by field it was x=1, y=5,
+  // t=2, pressure=5: a wrong curve without a word.
+  expectError("1,5;2,5\n", "semi.csv", {"semi.csv:1:", "mixed separators", "decimal commas"});
+  expectError("0.5 1\n1,5 2,5\n", "space.txt", {"space.txt:2:", "mixed separators"});
+  expectError("1,5\t2,5\n", "tab.txt", {"tab.txt:1:", "mixed separators"});
+  // One kind of separator per line is fine, with blanks around it.
+  EXPECT_EQ(parseStrokes("1 , 2 , 3\n4;5; 6\n", "ok.csv")[0].samples[1].t, 6.0);
+}
+
+TEST(PointFileCsv, FirstLineMixingNumbersAndTextIsAnErrorNotAHeader) {
+  // A damaged first point was skipped as a header, losing it unsaid.
+  expectError("13.0x,0.5\n1,2\n3,4\n", "first.csv", {"first.csv:1:", "non-numeric", "13.0x"});
+  expectError("\xEF\xBB\xBF\xEF\xBB\xBF1,2\n3,4\n", "bom2.csv", {"bom2.csv:1:", "non-numeric"});
+  // A header of names still is one.
+  EXPECT_EQ(parseStrokes("px,py\n1,2\n", "names.csv")[0].samples.size(), 1u);
+}
+
+TEST(PointFileCsv, HugeNumbersWithoutAnExponentAreInfiniteNotZero) {
+  // 400 digits overflow a double like 1e400 does; they used to read as 0.
+  expectError("1" + std::string(400, '0') + ",2\n3,4\n", "digits.csv", {"digits.csv:1:", "infinite coordinate"});
+  expectError("0,0\n3,-" + std::string(400, '9') + ".5\n", "neg.csv", {"neg.csv:2:", "infinite coordinate"});
+  // Too small still reads as 0, as strtod gives, however the digits are written.
+  const std::vector<Stroke> tiny = parseStrokes("0." + std::string(400, '0') + "1,2\n0.01e-399,3\n", "tiny.csv");
+  EXPECT_EQ(tiny[0].samples[0].p, Vec2(0, 2));
+  EXPECT_EQ(tiny[0].samples[1].p, Vec2(0, 3));
+  EXPECT_EQ(parseStrokes("1e-99999999999999999999,2\n", "e.csv")[0].samples[0].p, Vec2(0, 2));
+  expectError("1e99999999999999999999,2\n", "e2.csv", {"e2.csv:1:", "infinite coordinate"});
+}
+
+TEST(PointFileCsv, QuotedInputHasNoControlCharacters) {
+  // A NUL cut the message short where it stood; an ESC went to the terminal.
+  const std::string nul = errorOf([] { parseStrokes(std::string("1,2\n3,4\0x\n", 10), "nul.csv"); });
+  EXPECT_NE(nul.find("nul.csv:2: non-numeric field '4?x'"), std::string::npos) << nul;
+  const std::string esc = errorOf([] { parseStrokes("1,2\n3,\x1b[31m\n", "esc.csv"); });
+  EXPECT_NE(esc.find("esc.csv:2:"), std::string::npos) << esc;
+  EXPECT_EQ(esc.find('\x1b'), std::string::npos) << esc;
+  // An excerpt is not cut inside a UTF-8 character (24 bytes: the 'é' straddles it).
+  const std::string utf8 = errorOf([] { parseStrokes("1,2\n3," + std::string(23, 'a') + "\xC3\xA9z\n", "u.csv"); });
+  EXPECT_NE(utf8.find(std::string(23, 'a') + "...'"), std::string::npos) << utf8;
+}
+
 // ------------------------------------------------------------------ airfoil .dat
 
 TEST(PointFileDat, SeligNameLineThenOneProfile) {
@@ -224,6 +280,13 @@ TEST(PointFileDat, Errors) {
   expectError("Foil\n1 0\nzero 0\n", "y.dat", {"y.dat:3:", "non-numeric"});
   expectError("Foil (Lednicer)\n17. 17.\n\n0 0\n", "l.dat", {"l.dat:2:", "Lednicer"});
   expectError("Just a name\n", "n.dat", {"n.dat: no points"});
+}
+
+TEST(PointFileDat, LoneCarriageReturnsEndLines) {
+  // Read as one line, the whole file was the name line: "no points".
+  const std::vector<Stroke> strokes = parseStrokes("NACA 0012\r1 0\r0.5 0.1\r0 0\r0.5 -0.1\r", "mac.dat");
+  ASSERT_EQ(strokes.size(), 1u);
+  EXPECT_EQ(strokes[0].samples.size(), 4u);
 }
 
 // ------------------------------------------------------------------ JSON
@@ -261,6 +324,15 @@ TEST(PointFileJson, Errors) {
   expectError(R"({"strokes": [{"points": [[1, 2]], "pressure": ["hard"]}]})", "pr.json",
               {"pr.json:", "strokes[0].pressure[0]"});
   expectError(R"({"strokes": [{"points": []}]})", "none.json", {"none.json: no points"});
+}
+
+TEST(PointFileJson, NumberOutOfRangeNamesFileLineAndNumber) {
+  // nlohmann throws out_of_range (not parse_error) for these: the message had neither
+  // the file nor a position, and was no PointFileError.
+  expectError("{\"strokes\": [{\"points\": [[0, 0],\n [1e400, 1]]}]}", "big.json",
+              {"big.json:2:3:", "out of range", "1e400"});
+  expectError("{\"strokes\": [{\"points\": [[1, 1], [0, 0]], \"t\": [1, -1e4000]}]}", "t.json",
+              {"t.json:1:52:", "out of range", "-1e4000"});
 }
 
 // ------------------------------------------------------------------ SVG
@@ -416,6 +488,45 @@ TEST(PointFileSvg, ErrorsNameTheLine) {
   expectError("<svg>\n<!-- never closed\n<path d='M0 0 L 1 1'/></svg>", "e8.svg", {"e8.svg:2:", "unterminated comment"});
   expectError("<svg><rect width='3' height='3'/></svg>", "e9.svg", {"e9.svg: no points"});
   expectError("<svg><path d='M0 0 L 1e999 0'/></svg>", "e10.svg", {"e10.svg:1:", "near '1e999 0'"});
+}
+
+TEST(PointFileSvg, CoordinatesBeyondDoubleRangeAreErrors) {
+  // Each number finite, the sum of relative steps not: the points went to infinity.
+  expectError("<svg>\n<path d='M1.7e308 0 l 1.7e308 0 l 0 5'/></svg>", "rel.svg",
+              {"rel.svg:2:", "bad path data", "coordinate out of range"});
+  // A reflected control point (S after C) can overflow too.
+  expectError("<svg><path d='M0 0 C 0 0 -1.7e308 0 1.7e308 0 S 5 5 6 6'/></svg>", "refl.svg",
+              {"refl.svg:1:", "out of range"});
+  // Finite points whose distances overflow: the spacing was NaN, cast to int (undefined).
+  expectError("<svg><path d='M-1e308 -1e308 L 1e308 1e308 L 1e308 -1e308'/></svg>", "huge.svg",
+              {"huge.svg:1:", "coordinates too large"});
+  expectError("<svg><polyline points='0,0 1.7e308,0 1.7e308,1.7e308'/></svg>", "poly.svg",
+              {"poly.svg:1:", "bad points data", "coordinates too large"});
+  // 400 digits are not 0.
+  expectError("<svg><path d='M0 0 L " + std::string(400, '9') + " 1 L 5 5'/></svg>", "digits.svg",
+              {"digits.svg:1:", "bad path data"});
+}
+
+TEST(PointFileSvg, ArcsWithExtremeRadiiOrRotationStayOnTheirCurve) {
+  // Radii 1e300 for a chord of 14: the arc is its chord. The squared radii overflowed
+  // and the centre landed on the chord's midpoint, drawing a circle of radius 1e300.
+  const std::vector<Stroke> flat = svg("<path d='M0 0 A 1e300 1e300 0 0 1 10 10'/>");
+  ASSERT_EQ(flat.size(), 1u);
+  for (const Vec2& q : pointsOf(flat[0])) {
+    EXPECT_NEAR(q.x(), q.y(), 1e-9);
+    EXPECT_TRUE(q.x() >= -1e-9 && q.x() <= 10 + 1e-9) << q.transpose();
+  }
+  EXPECT_EQ(pointsOf(flat[0]).back(), Vec2(10, 10));
+  // A rotation of 1e308 degrees: times pi it overflowed to inf, the arc was dropped.
+  const double reduced = std::fmod(1e308, 360.0);
+  std::ostringstream reference;
+  reference.precision(17);
+  reference << "M0 0 A 5 3 " << reduced << " 0 1 10 10";
+  expectSamePath("M0 0 A 5 3 1e308 0 1 10 10", reference.str());
+  EXPECT_GT(svg("<path d='M0 0 A 5 3 1e308 0 1 10 10'/>")[0].samples.size(), 4u);
+  // Ordinary radii read as before: a half circle of radius 5 through its top.
+  const std::vector<Stroke> half = svg("<path d='M0 0 A 5 5 0 0 1 10 0'/>");
+  for (const Vec2& q : pointsOf(half[0])) EXPECT_NEAR((q - Vec2(5, 0)).norm(), 5.0, 1e-9);
 }
 
 // ------------------------------------------------------------------ real files

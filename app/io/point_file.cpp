@@ -3,9 +3,11 @@
 //
 //  - CSV / TXT. A data line holds 2 to 4 numbers, x y [t [pressure]]; fields are
 //    separated by a run of spaces or tabs that may hold one ',' or ';' (so "1,2",
-//    "1 2", "1;2" and "1 , 2" all read, but "1,,2" is an empty field and an error).
-//    '#' starts a comment (a whole line or the rest of one). The first non-comment
-//    line may be a header (any non-numeric field makes it one); if every header name
+//    "1 2", "1;2" and "1 , 2" all read, but "1,,2" is an empty field and an error),
+//    the same kind throughout a line ("1,5;2,5" is refused: decimal commas). Lines
+//    end with LF, CRLF or a lone CR. '#' starts a comment (a whole line or the rest
+//    of one). The first non-comment line may be a header (all its fields non-numeric:
+//    a first line mixing numbers and text is an error, not a header); if every header name
 //    is known (x, y, t / time / timestamp, p / pressure, each once) the columns are
 //    taken by name, otherwise by position. A blank line ends a stroke (runs of blank
 //    lines count once). The lines "START" and "BREAK" of the Omniglot stroke files
@@ -41,7 +43,11 @@
 //    equal to the start is dropped), so the stroke ends one spacing short of its start
 //    and the clean-up recognises it as closed. A subpath that is only a moveto draws
 //    nothing and gives no stroke. Bad path data gives the line of the bad data (the
-//    element's line if the attribute held character references).
+//    element's line if the attribute held character references); so do coordinates
+//    beyond double range (a relative step past 1.8e308) and drawings whose distances
+//    overflow (sizes beyond about 1e154), which cannot be flattened. An arc whose
+//    radii exceed 1e8 times its half chord is drawn, if it is the small arc, as its
+//    chord (F.6.5 loses every digit of it from so far a centre).
 
 #include "app/io/point_file.h"
 
@@ -76,6 +82,9 @@ constexpr int kMinCurvePieces = 4;
 /// output piece when more pieces are needed), and of the bounding-box estimate.
 constexpr int kLengthTableSteps = 64;
 constexpr int kBoxSamplesPerSegment = 16;
+/// Below this (half chord / radius)^2 of an SVG arc, the small arc is drawn as its chord
+/// (radii more than 1e8 times the half chord; the sagitta is under 1e-8 of the chord).
+constexpr double kArcAsChordLambda = 1e-16;
 /// Longest excerpt of the offending text quoted in a message.
 constexpr std::size_t kQuoteLength = 24;
 
@@ -91,16 +100,28 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   throw PointFileError(name + ": " + what);
 }
 
+/// An excerpt of input for a message: at most kQuoteLength bytes, not cutting a UTF-8
+/// character, with control characters shown as '?' (a NUL would end the message where
+/// it stands, an ESC would drive the terminal).
 std::string quote(std::string_view text) {
-  std::string out(text.substr(0, kQuoteLength));
-  for (char& c : out)
+  std::size_t length = std::min(text.size(), kQuoteLength);
+  while (length > 0 && length < text.size() && (static_cast<unsigned char>(text[length]) & 0xC0) == 0x80) --length;
+  std::string out(text.substr(0, length));
+  for (char& c : out) {
     if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-  if (text.size() > kQuoteLength) out += "...";
+    else if (static_cast<unsigned char>(c) < 0x20 || c == '\x7F') c = '?';
+  }
+  if (text.size() > length) out += "...";
   return out;
 }
 
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
 bool isDigit(char c) { return c >= '0' && c <= '9'; }
+
+/// Whether text[i] ends a line: a '\n', or a '\r' not followed by one (a lone CR).
+bool endsLine(std::string_view text, std::size_t i) {
+  return text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
+}
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && isSpace(s.front())) s.remove_prefix(1);
@@ -112,6 +133,31 @@ std::string lower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
+}
+
+/// Whether a decimal number that std::from_chars found out of range is too large (true)
+/// or too small (false) for a double. Its decimal order of magnitude is the exponent
+/// plus the place of the first non-zero digit; the exponent is only needed as far as
+/// its sign and whether it outweighs the digits, so it saturates instead of overflowing.
+bool overflowsDouble(std::string_view s) {
+  if (!s.empty() && (s.front() == '-' || s.front() == '+')) s.remove_prefix(1);
+  const std::size_t e = s.find_first_of("eE");
+  const std::string_view mantissa = s.substr(0, e);
+  long long exponent = 0;
+  if (e != std::string_view::npos) {
+    std::string_view digits = s.substr(e + 1);
+    const bool negative = !digits.empty() && digits.front() == '-';
+    if (!digits.empty() && (digits.front() == '-' || digits.front() == '+')) digits.remove_prefix(1);
+    for (const char c : digits) exponent = std::min<long long>(exponent * 10 + (c - '0'), 1'000'000'000'000LL);
+    if (negative) exponent = -exponent;
+  }
+  const std::size_t point = std::min(mantissa.find('.'), mantissa.size());
+  const std::size_t first_digit = mantissa.find_first_not_of("0.");
+  if (first_digit == std::string_view::npos) return false;  // zero: never out of range
+  // Digits before the point from the first non-zero one; negative when it is after the point.
+  const long long place = first_digit < point ? static_cast<long long>(point - first_digit)
+                                              : -static_cast<long long>(first_digit - point) + 1;
+  return exponent + place > 0;
 }
 
 /// A whole field as a double, or nullopt if it is not one number. Locale-independent
@@ -128,58 +174,67 @@ std::optional<double> parseNumber(std::string_view s) {
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
   if (end != s.data() + s.size()) return std::nullopt;
   if (ec == std::errc::result_out_of_range) {
-    const bool negative = s.front() == '-';
-    const std::size_t e = s.find_first_of("eE");
-    const bool huge = e != std::string_view::npos && e + 1 < s.size() && s[e + 1] != '-';
-    const double magnitude = huge ? std::numeric_limits<double>::infinity() : 0.0;
-    return negative ? -magnitude : magnitude;
+    // Not only "1e999": 400 digits without an exponent overflow too.
+    const double magnitude = overflowsDouble(s) ? std::numeric_limits<double>::infinity() : 0.0;
+    return s.front() == '-' ? -magnitude : magnitude;
   }
   if (ec != std::errc{}) return std::nullopt;
   return value;
 }
 
-/// The text split into lines (without "\n" or a trailing "\r"), after a UTF-8 byte
-/// order mark if there is one. Line i of the result is line i + 1 of the file.
+/// The text split into lines at "\n", "\r\n" or a lone "\r" (classic Mac OS files,
+/// and some spreadsheet exports: read as one line, their points would run together
+/// into one row of many numbers), after a UTF-8 byte order mark if there is one. Line
+/// i of the result is line i + 1 of the file.
 std::vector<std::string_view> splitLines(std::string_view text) {
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   std::vector<std::string_view> lines;
   std::size_t start = 0;
   while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
+    std::size_t end = text.find_first_of("\r\n", start);
     if (end == std::string_view::npos) end = text.size();
-    std::string_view line = text.substr(start, end - start);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    lines.push_back(line);
-    start = end + 1;
+    lines.push_back(text.substr(start, end - start));
+    start = end + (text.substr(end).starts_with("\r\n") ? 2 : 1);
   }
   return lines;
 }
 
 // ------------------------------------------------------------------ CSV / TXT / .dat
 
+enum class FieldSplit { kOk, kEmptyField, kMixedSeparators };
+
 /// Splits a data line into fields. A separator is a run of spaces and tabs holding at
-/// most one ',' or ';'. Returns false for an empty field (",1", "1,,2", "1,").
-bool splitFields(std::string_view line, std::vector<std::string_view>& fields) {
+/// most one ',' or ';'. Fails on an empty field (",1", "1,,2", "1,"), and on a line
+/// whose separators are not all alike (blank only, with ',' or with ';'): that is how
+/// decimal commas look ("1,5;2,5" or "1,5 2,5"), which would otherwise read as four
+/// numbers, x y t pressure, and give a wrong curve without a word.
+FieldSplit splitFields(std::string_view line, std::vector<std::string_view>& fields) {
   fields.clear();
   std::size_t i = 0;
   const auto skipBlank = [&] {
     while (i < line.size() && isSpace(line[i])) ++i;
   };
   const auto isSeparator = [](char c) { return c == ',' || c == ';' || isSpace(c); };
+  char line_separator = 0;  // ',', ';' or ' ' for the first separator of the line
   skipBlank();
   while (i < line.size()) {
     const std::size_t start = i;
     while (i < line.size() && !isSeparator(line[i])) ++i;
-    if (i == start) return false;  // a ',' or ';' where a field should start
+    if (i == start) return FieldSplit::kEmptyField;  // a ',' or ';' where a field should start
     fields.push_back(line.substr(start, i - start));
     skipBlank();
-    if (i < line.size() && (line[i] == ',' || line[i] == ';')) {
+    if (i == line.size()) break;
+    char separator = ' ';
+    if (line[i] == ',' || line[i] == ';') {
+      separator = line[i];
       ++i;
       skipBlank();
-      if (i == line.size()) return false;  // trailing separator
+      if (i == line.size()) return FieldSplit::kEmptyField;  // trailing separator
     }
+    if (line_separator != 0 && separator != line_separator) return FieldSplit::kMixedSeparators;
+    line_separator = separator;
   }
-  return true;
+  return FieldSplit::kOk;
 }
 
 enum Column { kX = 0, kY = 1, kT = 2, kPressure = 3 };
@@ -232,20 +287,26 @@ std::vector<Stroke> parseDelimited(std::string_view text, const std::string& nam
       endStroke();
       continue;
     }
-    if (!splitFields(line, fields)) failAt(name, line_number, "empty field in '" + quote(line) + "'");
+    switch (splitFields(line, fields)) {
+      case FieldSplit::kOk: break;
+      case FieldSplit::kEmptyField: failAt(name, line_number, "empty field in '" + quote(line) + "'");
+      case FieldSplit::kMixedSeparators:
+        failAt(name, line_number,
+               "mixed separators in '" + quote(line) +
+                   "' (decimal commas? numbers must use '.', fields one kind of separator)");
+    }
 
     values.clear();
     std::optional<std::string_view> bad_field;
     for (const std::string_view field : fields) {
-      const std::optional<double> v = parseNumber(field);
-      if (!v) {
-        bad_field = field;
-        break;
-      }
-      values.push_back(*v);
+      if (const std::optional<double> v = parseNumber(field)) values.push_back(*v);
+      else if (!bad_field) bad_field = field;
     }
     if (bad_field) {
-      if (!header_seen && !data_seen) {
+      // A CSV header is all names: a first line with numbers among its fields is damaged
+      // data ("13.0x,0.5"), and skipping it as a header would lose a point unsaid. An
+      // airfoil's name line is free text ("NACA 2412").
+      if (!header_seen && !data_seen && (airfoil || values.empty())) {
         header_seen = true;
         if (!airfoil) {
           named_columns = columnsFromHeader(fields);
@@ -300,21 +361,39 @@ std::vector<Stroke> parseDelimited(std::string_view text, const std::string& nam
 
 std::vector<Stroke> parseJson(const std::string& text, const std::string& name) {
   using nlohmann::json;
+  // "<file>:<line>:<column>" of a 0-based offset in the text.
+  const auto positionOf = [&](std::size_t offset) {
+    std::size_t line = 1, line_start = 0;
+    for (std::size_t i = 0; i < offset; ++i)
+      if (endsLine(text, i)) ++line, line_start = i + 1;
+    return name + ":" + std::to_string(line) + ":" + std::to_string(offset - line_start + 1);
+  };
   json doc;
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
     // e.byte is the 1-based offset of the last character read (past the end at EOF).
     const std::size_t offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    const std::size_t line = 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
-    const std::size_t newline = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
-    const std::size_t line_start = newline == std::string::npos ? 0 : newline + 1;
-    const std::size_t column = offset - line_start + 1;
     std::string what = e.what();
     // Keep nlohmann's description, not its own "[json.exception...] ... column N:" prefix.
     if (const std::size_t at = what.find("column "); at != std::string::npos)
       if (const std::size_t colon = what.find(": ", at); colon != std::string::npos) what = what.substr(colon + 2);
-    throw PointFileError(name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": JSON " + what);
+    throw PointFileError(positionOf(offset) + ": JSON " + what);
+  } catch (const json::out_of_range& e) {
+    // A number beyond double range ("1e400"): nlohmann throws this one without a
+    // position, only the number, so the first place it stands on its own is named.
+    const std::string what = e.what();
+    const std::size_t open = what.find('\'');
+    const std::size_t close = what.rfind('\'');
+    if (open == std::string::npos || close <= open) failFile(name, "JSON number out of range");
+    const std::string number = what.substr(open + 1, close - open - 1);
+    const auto partOfNumber = [](char c) { return isDigit(c) || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'; };
+    for (std::size_t at = text.find(number); at != std::string::npos; at = text.find(number, at + 1)) {
+      const std::size_t end = at + number.size();
+      if ((at == 0 || !partOfNumber(text[at - 1])) && (end == text.size() || !partOfNumber(text[end])))
+        throw PointFileError(positionOf(at) + ": JSON number out of range: " + number);
+    }
+    failFile(name, "JSON number out of range: " + number);
   }
 
   if (!doc.is_object() || !doc.contains("strokes") || !doc["strokes"].is_array())
@@ -425,7 +504,8 @@ std::optional<Segment> arcSegment(const Vec2& from, double rx, double ry, double
   rx = std::abs(rx);
   ry = std::abs(ry);
   if (rx == 0.0 || ry == 0.0) return lineSegment(from, to);
-  const double phi = phi_degrees * std::numbers::pi / 180.0;
+  // Reduced first: 1e308 degrees times pi would overflow, and NaN would drop the arc.
+  const double phi = std::fmod(phi_degrees, 360.0) * std::numbers::pi / 180.0;
   Segment s;
   s.kind = Segment::Kind::kArc;
   s.p[0] = from;
@@ -436,19 +516,24 @@ std::optional<Segment> arcSegment(const Vec2& from, double rx, double ry, double
   const Vec2 half = 0.5 * (from - to);
   const double x1 = s.cos_phi * half.x() + s.sin_phi * half.y();
   const double y1 = -s.sin_phi * half.x() + s.cos_phi * half.y();
-  // F.6.6.2: scale radii up uniformly when no ellipse of these radii reaches.
-  const double lambda = (x1 * x1) / (rx * rx) + (y1 * y1) / (ry * ry);
+  // F.6.6.2: scale radii up uniformly when no ellipse of these radii reaches. Written
+  // with ratios, not squared radii, which overflow for radii above 1e154.
+  const double lambda = (x1 / rx) * (x1 / rx) + (y1 / ry) * (y1 / ry);
+  // Radii over 1e8 times the chord: the short arc is its chord to 1e-9 of its length,
+  // and the centre so far away that points evaluated from it would lose every digit.
+  if (lambda < kArcAsChordLambda && !large_arc) return lineSegment(from, to);
+  if (!(lambda > 0.0)) return std::nullopt;  // a large arc round an ellipse no double reaches
   if (lambda > 1.0) {
     rx *= std::sqrt(lambda);
     ry *= std::sqrt(lambda);
   }
-  // Step 2: (cx', cy') (F.6.5.2); the radicand is clamped at 0 against rounding.
-  const double rx2 = rx * rx, ry2 = ry * ry, x12 = x1 * x1, y12 = y1 * y1;
-  const double denominator = rx2 * y12 + ry2 * x12;
-  double factor = std::sqrt(std::max(0.0, (rx2 * ry2 - denominator) / denominator));
+  // Step 2: (cx', cy') (F.6.5.2). Its radicand (rx^2 ry^2 - rx^2 y1^2 - ry^2 x1^2) /
+  // (rx^2 y1^2 + ry^2 x1^2) is (1 - lambda) / lambda, clamped at 0 against rounding
+  // (and 0 once the radii were scaled up).
+  double factor = lambda >= 1.0 ? 0.0 : std::sqrt(std::max(0.0, (1.0 - lambda) / lambda));
   if (large_arc == sweep) factor = -factor;
-  const double cx1 = factor * rx * y1 / ry;
-  const double cy1 = -factor * ry * x1 / rx;
+  const double cx1 = factor * (y1 / ry) * rx;
+  const double cy1 = -factor * (x1 / rx) * ry;
   // Step 3: the centre (F.6.5.3).
   const Vec2 mid = 0.5 * (from + to);
   s.centre = Vec2(s.cos_phi * cx1 - s.sin_phi * cy1, s.sin_phi * cx1 + s.cos_phi * cy1) + mid;
@@ -468,8 +553,9 @@ std::optional<Segment> arcSegment(const Vec2& from, double rx, double ry, double
 /// Appends the points of `segment` after its start: evenly spread in (chord-estimated)
 /// arc length, at most `max_spacing` apart, at least `min_pieces` pieces, the exact end
 /// point last. Each point is evaluated on the segment itself; the chord-length table
-/// only chooses the parameters. A segment of zero length adds nothing.
-void appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec2>& out) {
+/// only chooses the parameters. A segment of zero length adds nothing; one whose length
+/// overflows a double adds nothing and returns false.
+bool appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec2>& out) {
   const int min_pieces = segment.kind == Segment::Kind::kLine ? 1 : kMinCurvePieces;
   std::vector<double> cumulative;
   const auto tabulate = [&](int steps) {
@@ -488,7 +574,8 @@ void appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec
   };
   int steps = kLengthTableSteps;
   double length = tabulate(steps);
-  if (!(length > 0.0)) return;
+  if (!std::isfinite(length)) return false;  // and NaN pieces below would be undefined
+  if (!(length > 0.0)) return true;
   int pieces = piecesFor(length);
   if (segment.kind != Segment::Kind::kLine && 4 * pieces > steps) {
     steps = 4 * pieces;
@@ -505,11 +592,14 @@ void appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec
     out.push_back(segment.at((static_cast<double>(k) + fraction) / steps));
   }
   out.push_back(segment.endPoint());
+  return true;
 }
 
 /// The strokes of one SVG element: its drawn subpaths, flattened with a spacing taken
-/// from the bounding box of all of them.
-void flattenElement(const std::vector<Subpath>& subpaths, std::vector<Stroke>& strokes) {
+/// from the bounding box of all of them. Returns false (and adds nothing) if the extent
+/// of the element, or of one of its segments, overflows a double: no spacing can be
+/// derived from it (coordinates near 1e308 that are each finite).
+bool flattenElement(const std::vector<Subpath>& subpaths, std::vector<Stroke>& strokes) {
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
   Vec2 hi = -lo;
   for (const Subpath& sub : subpaths) {
@@ -523,28 +613,33 @@ void flattenElement(const std::vector<Subpath>& subpaths, std::vector<Stroke>& s
         hi = hi.cwiseMax(q);
       }
   }
-  if (!(lo.x() <= hi.x())) return;  // nothing drawn
+  if (!(lo.x() <= hi.x())) return true;  // nothing drawn
   const double diagonal = (hi - lo).norm();
+  if (!std::isfinite(diagonal)) return false;
   const double max_spacing = kMaxSpacingFraction * diagonal;  // 0 for a single point: min pieces only
   const double same_point = 1e-12 * diagonal;
 
+  std::vector<Stroke> element_strokes;
   for (const Subpath& sub : subpaths) {
     if (!sub.drawn) continue;
     std::vector<Vec2> points{sub.start};
-    for (const Segment& seg : sub.segments) appendFlattened(seg, max_spacing, points);
+    for (const Segment& seg : sub.segments)
+      if (!appendFlattened(seg, max_spacing, points)) return false;
     if (sub.closed && points.size() > 1) {
       if ((points.back() - sub.start).norm() <= same_point) {
         points.pop_back();  // the path came back to its start itself
       } else {
-        appendFlattened(lineSegment(points.back(), sub.start), max_spacing, points);
+        if (!appendFlattened(lineSegment(points.back(), sub.start), max_spacing, points)) return false;
         points.pop_back();  // the start, already first
       }
     }
     Stroke stroke;
     stroke.samples.reserve(points.size());
     for (const Vec2& q : points) stroke.samples.push_back(StrokeSample{q});
-    strokes.push_back(std::move(stroke));
+    element_strokes.push_back(std::move(stroke));
   }
+  for (Stroke& stroke : element_strokes) strokes.push_back(std::move(stroke));
+  return true;
 }
 
 // ------------------------------------------------------------------ SVG path data
@@ -650,9 +745,17 @@ class PathDataReader {
   }
 
   Vec2 point(bool relative) {
+    const std::size_t start = m_pos;
     const double x = number();
     const double y = number();
-    return relative ? m_current + Vec2(x, y) : Vec2(x, y);
+    return finite(relative ? m_current + Vec2(x, y) : Vec2(x, y), start);
+  }
+
+  /// Each number is finite, but a relative step or a reflected control point can still
+  /// pass the largest double.
+  static Vec2 finite(const Vec2& p, std::size_t offset) {
+    if (!allFinite(p)) throw Error{offset, "coordinate out of range"};
+    return p;
   }
 
   void finishSubpath() {
@@ -706,19 +809,19 @@ class PathDataReader {
       }
       case 'H': {
         const double x = number();
-        addLine(Vec2(relative ? m_current.x() + x : x, m_current.y()), offset);
+        addLine(finite(Vec2(relative ? m_current.x() + x : x, m_current.y()), offset), offset);
         return;
       }
       case 'V': {
         const double y = number();
-        addLine(Vec2(m_current.x(), relative ? m_current.y() + y : y), offset);
+        addLine(finite(Vec2(m_current.x(), relative ? m_current.y() + y : y), offset), offset);
         return;
       }
       case 'C':
       case 'S': {
         Vec2 c1;
         if (m_previous == 'C') c1 = point(relative);
-        else c1 = (previous == 'C' || previous == 'S') ? Vec2(2.0 * m_current - m_last_control) : m_current;
+        else c1 = finite((previous == 'C' || previous == 'S') ? Vec2(2.0 * m_current - m_last_control) : m_current, offset);
         const Vec2 c2 = point(relative);
         const Vec2 p = point(relative);
         Segment s;
@@ -733,7 +836,7 @@ class PathDataReader {
       case 'T': {
         Vec2 c;
         if (m_previous == 'Q') c = point(relative);
-        else c = (previous == 'Q' || previous == 'T') ? Vec2(2.0 * m_current - m_last_control) : m_current;
+        else c = finite((previous == 'Q' || previous == 'T') ? Vec2(2.0 * m_current - m_last_control) : m_current, offset);
         const Vec2 p = point(relative);
         Segment s;
         s.kind = Segment::Kind::kQuad;
@@ -822,7 +925,7 @@ class SvgScanner {
  public:
   SvgScanner(std::string_view text, const std::string& name) : m_text(text), m_name(name) {
     for (std::size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') m_line_starts.push_back(i + 1);
+      if (endsLine(text, i)) m_line_starts.push_back(i + 1);
   }
 
   std::vector<Stroke> read() {
@@ -934,7 +1037,7 @@ class SvgScanner {
         break;
       }
       end = nameEnd(i);
-      if (end == i) failAt(m_name, lineOf(i), "unexpected '" + std::string(1, m_text[i]) + "' in a tag");
+      if (end == i) failAt(m_name, lineOf(i), "unexpected '" + quote(m_text.substr(i, 1)) + "' in a tag");
       Attribute attribute{m_text.substr(i, end - i), {}, end};
       i = end;
       while (i < m_text.size() && isSpace(m_text[i])) ++i;
@@ -986,7 +1089,8 @@ class SvgScanner {
         } else if (std::optional<Subpath> sub = readPointList(data, tag == "polygon")) {
           subpaths.push_back(std::move(*sub));
         }
-        flattenElement(subpaths, strokes);
+        if (!flattenElement(subpaths, strokes))
+          throw PathDataReader::Error{0, "coordinates too large to flatten: distances overflow a double"};
       } catch (const PathDataReader::Error& error) {
         const std::size_t line = has_references ? lineOf(from) : lineOf(attribute.offset + error.offset);
         failAt(m_name, line,
@@ -1020,12 +1124,12 @@ class SvgScanner {
         unsigned code = 0;
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), code, hex ? 16 : 10);
         if (ec != std::errc{} || end != digits.data() + digits.size() || digits.empty())
-          failAt(m_name, lineOf(element), "bad character reference '&" + std::string(entity) + ";'");
+          failAt(m_name, lineOf(element), "bad character reference '&" + quote(entity) + ";'");
         // Path data is ASCII; anything else is a space here (and then a syntax error
         // if it is not a separator).
         out += code < 128 ? static_cast<char>(code) : ' ';
       } else {
-        failAt(m_name, lineOf(element), "unknown entity '&" + std::string(entity) + ";'");
+        failAt(m_name, lineOf(element), "unknown entity '&" + quote(entity) + ";'");
       }
       i = semicolon;
     }

@@ -3,8 +3,9 @@
 //  - CSV / TXT: one point per line `x,y[,t[,pressure]]` (commas, spaces, tabs or
 //    semicolons), `#` comments and one header line allowed (known names x, y, t/time,
 //    p/pressure pick the columns; any other header is skipped and columns stay
-//    positional), a blank line between strokes; Omniglot's START / BREAK lines are
-//    understood. NaN or infinite values are errors;
+//    positional), a blank line between strokes (lines end with LF, CRLF or CR; one
+//    kind of separator per line, so decimal commas are refused); Omniglot's START /
+//    BREAK lines are understood. NaN or infinite values are errors;
 //  - airfoil `.dat` (Selig): a name line, then `x y` lines; one profile (blank lines
 //    ignored; Lednicer files are refused with a message saying so);
 //  - the project's stroke JSON: {"strokes": [{"points": [[x, y], ...], "t": [...],

@@ -1,5 +1,7 @@
 #include "app/lafit/fit_file.h"
 
+#include <new>
+
 #include "app/io/fit_json.h"
 #include "app/io/point_file.h"
 
@@ -37,17 +39,27 @@ FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, b
   out.strokes = readStrokes(input);
   nlohmann::json curves = nlohmann::json::array();
   for (std::size_t i = 0; i < out.strokes.size(); ++i) {
+    const std::string where = input.string() + ": stroke " + std::to_string(i + 1) + ": ";
+    std::string why;
     try {
       FitResult r = fitStroke(out.strokes[i], options);
       curves.push_back(fitResultToJson(r, out.strokes[i], with_stages));
       out.results.push_back(std::move(r));
       out.errors.emplace_back();
+      continue;
     } catch (const StrokeError& e) {  // a dot, a straight tap: this stroke only
-      const std::string why = input.string() + ": stroke " + std::to_string(i + 1) + ": " + e.what();
-      curves.push_back({{"error", why}});
-      out.results.emplace_back();
-      out.errors.push_back(why);
+      why = where + e.what();
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      // A stage refusing what the clean-up let through (e.g. B-spline smoothing left
+      // with fewer than 4 points): still this stroke only, and the message must say
+      // which file and stroke, which the stage's own words do not.
+      why = where + "stroke cannot be fitted: " + e.what();
     }
+    curves.push_back({{"error", why}});
+    out.results.emplace_back();
+    out.errors.push_back(why);
   }
   out.document = curves.size() == 1 && !curves[0].contains("error") ? curves[0] : nlohmann::json{{"curves", curves}};
   return out;
