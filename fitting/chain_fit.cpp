@@ -883,7 +883,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     const bool zero0 = layout.kappa[i] < 0, zero1 = layout.kappa[i + 1] < 0;
     if (zero0 && zero1) return refuse("segment " + std::to_string(i) + " is straight");
     layout.zero.push_back(zero0 ? ZeroEnd::kStart : zero1 ? ZeroEnd::kEnd : ZeroEnd::kNone);
-    layout.turn_sign.push_back((zero0 ? kappa[i + 1] : kappa[i]) < 0.0 ? -1.0 : 1.0);
+    layout.turn_sign.push_back((zero0 ? kappa[(i + 1) % joints] : kappa[i]) < 0.0 ? -1.0 : 1.0);  // (closed: joint n is 0)
     const double log_turning = std::log(std::abs(initial[i].turning()));
     layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
     const double lo = options.min_alpha;

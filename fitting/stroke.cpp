@@ -66,6 +66,12 @@ constexpr double kCrossReach = 2.0;
 /// a sideways miss gently takes a step several times as long as the miss (on a circle of
 /// radius r, a miss d is bridged best by a step of about sqrt(2 r d)).
 constexpr double kSeamReach = 4.0;
+/// A closed curve has at least this many points (stage 2's periodic cubic spline needs
+/// them; three points closed up are a triangle, not a curve).
+constexpr std::size_t kMinClosedPoints = 4;
+/// The seam search tries at most about this many points of each region (it is
+/// quadratic, and a stroke drawn round and round has all its points there).
+constexpr std::size_t kMaxSeamCandidates = 256;
 /// The end of a stroke run past its start is beside its head if their directions differ
 /// by less than this.
 constexpr double kSeamParallel = std::numbers::pi / 4.0;
@@ -539,14 +545,19 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
       head_limit = std::min(head_limit + kCrossReach * reach, kMaxOverlapFraction * length);
       tail_limit = std::max(tail_limit - kCrossReach * reach, tail_start);
     }
+    // (every stride-th point of each region is a candidate, kMaxSeamCandidates)
+    std::size_t head_count = 0, tail_count = 0;
+    for (std::size_t i = first; i < n && s[i] <= head_limit; ++i) ++head_count;
+    for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_limit; --j) ++tail_count;
+    const std::size_t head_stride = 1 + head_count / kMaxSeamCandidates, tail_stride = 1 + tail_count / kMaxSeamCandidates;
     std::vector<std::optional<Vec2>> out(n);
-    for (std::size_t i = first; i < n && s[i] <= head_limit; ++i) out[i] = departure(i);
+    for (std::size_t i = first; i < n && s[i] <= head_limit; i += head_stride) out[i] = departure(i);
     double best = kink;
     std::optional<Seam> better;
-    for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_limit; --j) {
+    for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_limit; j = j >= tail_stride ? j - tail_stride : 0) {
       const auto in = arrival(j);
       if (!in) continue;
-      for (std::size_t i = first; s[i] <= head_limit && i + 3 <= j; ++i) {
+      for (std::size_t i = first; s[i] <= head_limit && i + 3 <= j; i += head_stride) {
         const double gap = (p[i] - p[j]).norm();
         if (gap < merge || gap > kSeamReach * reach || !out[i]) continue;
         const double turn = seamTurn(j, *in, i, *out[i]);
@@ -558,7 +569,7 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     }
     if (better) return better;
   }
-  if (m + 1 - first < 3) return std::nullopt;
+  if (m + 1 - first < kMinClosedPoints) return std::nullopt;
   return Seam{first, m + 1};
 }
 
@@ -685,6 +696,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   publish();
   result.diagonal = boundingBoxDiagonal(pts.p);
   if (collinear(pts.p)) fail("all points lie on one straight line", samples, result);
+  if (result.closed && pts.size() < kMinClosedPoints) fail("a closed curve needs at least 4 points", samples, result);
 
   // 6. Corners; a closed stroke starts at its corner nearest the original start.
   if (options.detect_corners) {

@@ -185,9 +185,9 @@ TEST(CleanStroke, DropsNonFiniteAndDuplicateSamples) {
   EXPECT_EQ(c.trimmed_start + c.trimmed_end, 0u) << describe(c);
 }
 
-std::string errorOf(const Stroke& raw) {
+std::string errorOf(const Stroke& raw, const CleanupOptions& options = {}) {
   try {
-    cleanStroke(raw);
+    cleanStroke(raw, options);
   } catch (const StrokeError& e) {
     return e.what();
   }
@@ -205,6 +205,19 @@ TEST(CleanStroke, ThrowsOnTooFewPoints) {
   EXPECT_NE(message.find("6 samples: 2 non-finite, 2 duplicates"), std::string::npos) << message;
   EXPECT_NE(message.find("2 left"), std::string::npos) << message;
   EXPECT_NE(errorOf(strokeOf({{7, 7}, {7, 7}, {7, 7}, {7, 7}})).find("fewer than 3"), std::string::npos);
+}
+
+// A closed curve needs four points (stage 2's periodic spline): three points whose end
+// meets their start stay open, and three points said to be closed are an error. (Found
+// by fuzzing lafit: the seam left three points and smoothing threw something other
+// than StrokeError.)
+TEST(CleanStroke, AClosedCurveHasAtLeastFourPoints) {
+  const CleanStroke c = cleanStroke(strokeOf({{1, 0.5}, {1, 200}, {1, 400.5}, {2, 0}}));
+  EXPECT_TRUE(!c.closed || c.points.size() >= 4) << c.points.size() << " points closed";
+  CleanupOptions closed;
+  closed.assume_closed = true;
+  const std::string message = errorOf(strokeOf({{0, 0}, {10, 0}, {5, 8}}), closed);
+  EXPECT_NE(message.find("a closed curve needs at least 4 points"), std::string::npos) << message;
 }
 
 TEST(CleanStroke, ThrowsOnCollinearPoints) {
