@@ -8,6 +8,7 @@
 #include <string>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 #include "core/lcg.h"
 #include "core/three_point_segment.h"
@@ -155,7 +156,8 @@ double msSince(Clock::time_point t0) { return std::chrono::duration<double, std:
 struct Part {
   std::vector<Vec2> points;
   bool closed = false;
-  bool starts_at_corner = false;
+  bool starts_at_corner = false;  // its first point is a corner: its curve starts there exactly
+  bool ends_at_corner = false;    // its last point is a corner: its curve ends there exactly
 };
 
 // Points along every step of `p` (and the closing step of a closed part) longer than
@@ -211,6 +213,7 @@ std::vector<Part> splitAtCorners(const CleanStroke& c) {
     for (std::size_t i = cuts[k]; i <= cuts[k + 1]; ++i) part.points.push_back(p[i % p.size()]);
     part.points = fillGaps(part.points, false, spacing);
     part.starts_at_corner = c.closed || k > 0;
+    part.ends_at_corner = c.closed || k + 2 < cuts.size();
     parts.push_back(std::move(part));
   }
   return parts;
@@ -911,7 +914,7 @@ std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const
 // the spline. The result replaces the part's chain where it is within the tolerance,
 // closer to the points than that chain, or that chain has gaps; fit.max_dev is then
 // known.
-void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol, double noise, double diag,
+void polishPart(PartFit& fit, const Part& part, double tol, double noise, double diag,
                 const FitOptions& options) {
   if (!fit.spline) return;  // a straight part
   SelectionOptions so;
@@ -921,7 +924,7 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
   co.max_alpha = options.max_alpha;
   co.closed = part.closed;
   co.fix_start = part.starts_at_corner;
-  co.fix_end = ends_at_corner;
+  co.fix_end = part.ends_at_corner;
   co.max_points = kFitPoints;
   co.max_iterations = kFitIterations;
   co.noise = noise;
@@ -960,6 +963,48 @@ void polishPart(PartFit& fit, const Part& part, bool ends_at_corner, double tol,
     fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
 }
 
+// Makes the parts' chains meet at their corners. Stage 7 pins a part's ends to its
+// corner points, but a part whose chain comes from stages 2-6 (stage 7 off, or its
+// result not kept) ends where its smoothing spline does, up to about a tolerance from
+// the corner: the curve would be broken there. Each such pair of ends moves to their
+// midpoint, each part's chain by the similarity that takes its two ends to their places
+// (G2 and the alphas stay exactly; a point moves by at most the larger end's move).
+// Where that fails the gap stays, and the quality figures (g0_gap) show it.
+void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed, const G2Options& g2) {
+  const std::size_t n = fits.size();
+  if (n == 0) return;
+  std::vector<Vec2> starts(n), ends(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (fits[k].segments.empty()) return;
+    starts[k] = fits[k].segments.front().start();
+    ends[k] = fits[k].segments.back().end();
+  }
+  std::vector<Vec2> to_start = starts, to_end = ends;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!parts[k].ends_at_corner || (!closed && k + 1 == n)) continue;
+    const std::size_t next = (k + 1) % n;
+    to_end[k] = to_start[next] = 0.5 * (ends[k] + starts[next]);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 from = ends[k] - starts[k], to = to_end[k] - to_start[k];
+    if (to_start[k] == starts[k] && to_end[k] == ends[k]) continue;
+    if (!(from.norm() > 0.0 && to.norm() > 0.0)) {
+      // A part from a closed stroke's only corner back to it: no similarity closes it, a
+      // joint deformation (as stage 6) takes its end to its start.
+      std::vector<LaSegment> closed_up = snapToJoints(fits[k].segments, false, starts[k], g2);
+      if (!closed_up.empty()) fits[k].segments = std::move(closed_up);
+      continue;
+    }
+    const double scale = to.norm() / from.norm(), turn = signedAngle(from, to);
+    const Eigen::Rotation2Dd rotation(turn);
+    std::vector<LaSegment> moved;
+    for (const LaSegment& s : fits[k].segments)
+      moved.emplace_back(s.alpha(), scale * s.length(), Vec2(to_start[k] + scale * (rotation * (s.start() - starts[k]))),
+                         s.theta0() + turn, s.kappaStart() / scale, s.kappaEnd() / scale);
+    fits[k].segments = std::move(moved);
+  }
+}
+
 }  // namespace
 
 FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
@@ -982,12 +1027,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
-  auto fitOne = [&](const Part& part, bool ends_at_corner) {
+  auto fitOne = [&](const Part& part) {
     PartFit fit = fitPart(part, r.tolerance, noise, diag, options, r.timings);
     if (!polishing) return fit;
     auto polish = [&](PartFit& f) {
       const auto tp = Clock::now();
-      polishPart(f, part, ends_at_corner, r.tolerance, noise.sigma, diag, options);
+      polishPart(f, part, r.tolerance, noise.sigma, diag, options);
       r.timings.polish_ms += msSince(tp);
     };
     polish(fit);
@@ -1020,9 +1065,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     measure(fit);
     return fit;
   };
-  auto endsAtCorner = [&](std::size_t k) { return r.cleaned.closed ? !r.cleaned.corners.empty() : k + 1 < parts.size(); };
   std::vector<PartFit> fits;
-  for (std::size_t k = 0; k < parts.size(); ++k) fits.push_back(fitOne(parts[k], endsAtCorner(k)));
+  for (const Part& part : parts) fits.push_back(fitOne(part));
   // A corner is the clean-up's reading of the stroke, and a tight bend can pass for one.
   // Where a part beside a corner misses the tolerance and the two parts fitted as one
   // smooth part keep it, the corner goes. (The corner after part k: corners[k] of an
@@ -1040,11 +1084,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     if (seam) {
       merged.points.pop_back();  // the corner again
       merged.closed = true;
-      merged.starts_at_corner = false;
+      merged.starts_at_corner = merged.ends_at_corner = false;
     } else {
       merged.points.insert(merged.points.end(), parts[k + 1].points.begin() + 1, parts[k + 1].points.end());
+      merged.ends_at_corner = parts[k + 1].ends_at_corner;
     }
-    PartFit smooth = fitOne(merged, !seam && endsAtCorner(k + 1));
+    PartFit smooth = fitOne(merged);
     if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance)) {
       ++k;
       continue;
@@ -1059,6 +1104,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     fits.erase(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
   }
+  joinAtCorners(fits, parts, closed, g2OptionsOf(options, diag));
   for (std::size_t k = 0; k < parts.size(); ++k) {
     PartFit& fit = fits[k];
     r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());

@@ -173,9 +173,11 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
   for (std::size_t j = 0; j < n; ++j) {
     if (curve.pieces[j].corner) ++q.corners;
     const bool has_joint_before = j > 0 || (curve.closed && n > 1);
-    if (!has_joint_before || curve.pieces[j].corner) continue;
+    if (!has_joint_before) continue;
     const LaSegment& a = curve.pieces[(j + n - 1) % n].segment;
     const LaSegment& b = curve.pieces[j].segment;
+    q.g0_gap = std::max(q.g0_gap, (a.end() - b.start()).norm() / diag);  // corners too: a corner is no break
+    if (curve.pieces[j].corner) continue;
     q.g1_gap = std::max(q.g1_gap, std::abs(wrapAngle(a.theta(a.length()) - b.theta0())));
     q.g2_gap = std::max(q.g2_gap, relativeGap(a.kappaEnd(), b.kappaStart(), diag));
     const int ta = trend(a), tb = trend(b);

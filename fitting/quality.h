@@ -13,6 +13,7 @@ namespace la {
 struct QualityFigures {
   double max_dev = 0.0;   // largest distance from an input point to the curve
   double rms_dev = 0.0;
+  double g0_gap = 0.0;    // largest distance between a segment's end and the next one's start / diagonal
   double g1_gap = 0.0;    // largest tangent-angle jump at a (non-corner) joint, radians
   double g2_gap = 0.0;    // largest relative curvature jump at a (non-corner) joint
   int extrema = 0;        // curvature extrema along the curve (trend changes at joints)

@@ -31,6 +31,7 @@ nlohmann::json qualityToJson(const QualityFigures& q) {
   return {{"max_dev", q.max_dev},
           {"rms_dev", q.rms_dev},
           {"max_dev_relative", q.diagonal > 0 ? q.max_dev / q.diagonal : 0.0},
+          {"g0_gap", q.g0_gap},
           {"g1_gap", q.g1_gap},
           {"g2_gap", q.g2_gap},
           {"extrema", q.extrema},
