@@ -63,6 +63,13 @@ constexpr int kDeviationSamples = 24;
 // them, and only on pieces holding this many points.
 constexpr int kMaxRefinePasses = 16;
 constexpr std::size_t kMinPointsToHalve = 2;
+// A curve further than this many tolerances from the stroke's polyline (a loop between
+// two points) is reported as straying: between sparse points a fair curve may leave
+// the chords by about a tolerance.
+constexpr double kStrayWarning = 2.0;
+// A part's curve is measured for straying (fitStroke's alternative starts) where it is
+// longer than the part's polyline by this factor.
+constexpr double kStrayLength = 1.02;
 // A closed part keeps at least this many pieces (each turns less than pi).
 constexpr std::size_t kMinClosedPieces = 3;
 // Resolution of the deviations that decide those splits (relative to the diagonal;
@@ -439,6 +446,7 @@ struct PartFit {
   std::vector<double> parameters;  // the points' spline parameters
   std::vector<std::string> warnings;
   double max_dev = NAN;            // largest distance of the part's points from `segments`, once known
+  double stray = NAN;              // largest distance of `segments` from the part's polyline, once known
   SolveReport smoothing, g2;
 };
 
@@ -955,12 +963,28 @@ void polishPart(PartFit& fit, const Part& part, double tol, double noise, double
     if (polished.max_distance >= fit.max_dev) return;
   }
   fit.max_dev = polished.max_distance;
+  fit.stray = NAN;  // (measured where needed)
   fit.warnings.clear();
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
   fit.reports = reportsOf(fit.segments, polished.feet, fit.parameters, *fit.spline, part.closed);
   for (std::size_t i = 0; i < fit.reports.size() && i < polished.alpha_standard_error.size(); ++i)
     fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
+}
+
+// How far a part's chain goes from the part's polyline (strayFromPoints), measured only
+// where the chain is longer than the polyline (kStrayLength; else 0): a loop adds
+// length, noise only to the polyline, and the measure costs a grid of the points.
+double strayOf(const std::vector<LaSegment>& segments, const Part& part, double diag) {
+  double curve_length = 0.0, stroke_length = 0.0;
+  for (const LaSegment& s : segments) curve_length += s.length();
+  for (std::size_t i = 1; i < part.points.size(); ++i) stroke_length += (part.points[i] - part.points[i - 1]).norm();
+  if (part.closed) stroke_length += (part.points.front() - part.points.back()).norm();
+  if (!(curve_length > kStrayLength * stroke_length)) return 0.0;
+  Curve c;
+  c.closed = part.closed;
+  for (const LaSegment& s : segments) c.pieces.push_back({s, false});
+  return strayFromPoints(c, part.points, diag);
 }
 
 // Makes the parts' chains meet at their corners. Stage 7 pins a part's ends to its
@@ -1036,17 +1060,18 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
       r.timings.polish_ms += msSince(tp);
     };
     polish(fit);
-    // Where that leaves a gap or a miss, other starts: the better result stays (G2
-    // first, then the deviation from the part's own points).
-    auto misses = [&] { return !fit.g2.usable() || !(fit.max_dev <= r.tolerance); };
+    // Where that leaves a gap, a miss or a stray (the curve going where the stroke did
+    // not: a loop between two points), other starts: the better result stays (G2 first,
+    // then the larger of the deviation from the part's points and the stray).
     auto measure = [&](PartFit& f) {
       if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
+      if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
+      return std::max(f.max_dev, f.stray);
     };
+    auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
     auto consider = [&](PartFit other) {
       polish(other);
-      measure(fit);
-      measure(other);
-      const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : other.max_dev < fit.max_dev;
+      const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : measure(other) < measure(fit);
       if (better) fit = std::move(other);
     };
     // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
@@ -1122,7 +1147,11 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const auto tq = Clock::now();
   r.quality = measureQuality(r.curve, r.cleaned.points);
   r.timings.quality_ms = msSince(tq);
-  // Said from the measured figure, whichever stage or start the curve came from.
+  // Said from the measured figures, whichever stage or start the curve came from.
+  double stray = 0.0;
+  for (std::size_t k = 0; k < parts.size(); ++k) stray = std::max(stray, strayOf(fits[k].segments, parts[k], diag));
+  if (stray > kStrayWarning * r.tolerance)
+    r.warnings.push_back("the curve strays up to " + std::to_string(stray) + " from the stroke, where no point is");
   if (r.quality.max_dev > r.tolerance)
     r.warnings.push_back("the curve misses the tolerance: it passes up to " + std::to_string(r.quality.max_dev) +
                          " from the points, the tolerance is " + std::to_string(r.tolerance));

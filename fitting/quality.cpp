@@ -151,6 +151,26 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
   return out;
 }
 
+// (a segment that runs away between two points is far from every point's foot, so
+// max_dev, measured from the points, cannot see it)
+constexpr double kStrayStep = 2e-3;
+
+double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal) {
+  if (points.size() < 2 || curve.pieces.empty()) return 0.0;
+  if (curve.closed) points.push_back(points.front());
+  const EdgeGrid grid(points);
+  double worst = 0.0;
+  int edge = 0;  // the previous sample's nearest: a first bound for the next
+  CurveSamples smp;
+  for (const CurvePiece& piece : curve.pieces) {
+    const int n = std::clamp(static_cast<int>(std::ceil(piece.segment.length() / (kStrayStep * diagonal))) + 1, 2, 100000);
+    smp.clear();
+    piece.segment.sample(n, smp);
+    for (const Vec2& q : smp.point) worst = std::max(worst, grid.distance(q, grid.distance2(q, edge), edge));
+  }
+  return worst;
+}
+
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points) {
   QualityFigures q;
   q.diagonal = boundingBoxDiagonal(points);

@@ -30,6 +30,10 @@ struct QualityFigures {
 std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal,
                                      double resolution = 1e-5);
 
+/// Largest distance from the curve (sampled every 0.2% of `diagonal`) to the polyline
+/// of `points` (closed if the curve is): where the curve goes that the stroke never went.
+double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal);
+
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
 
 }  // namespace la

@@ -41,6 +41,10 @@ const fs::path kData = LAFAIR_SHARED_DATA_DIR;
 
 // From the issue.
 constexpr double kG0Threshold = 1e-9;  // of the diagonal (ours: the segments meet)
+// Ours: the curve stays within this many tolerances of the stroke's polyline
+// (strayFromPoints: no loop where the stroke has none, which max_dev, measured from the
+// points, cannot see; fitting/pipeline.cpp warns beyond the same).
+constexpr double kMaxStray = 2.0;
 constexpr double kG1Threshold = 1e-9;  // radians
 constexpr double kG2Threshold = 1e-6;  // relative curvature gap
 // max_dev may exceed the tolerance by rounding only: 1e-9 of the tolerance.
@@ -223,6 +227,9 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
         return ok;
       };
       EXPECT_TRUE(check(!r.curve.pieces.empty(), "empty curve")) << where;
+      const double stray = strayFromPoints(r.curve, r.cleaned.points, r.quality.diagonal);
+      EXPECT_TRUE(check(stray <= kMaxStray * r.tolerance, "strays"))
+          << where << ": the curve goes " << stray << " from the stroke (tolerance " << r.tolerance << ")";
       EXPECT_TRUE(check(r.quality.g0_gap < kG0Threshold, "g0 gap"))
           << where << ": segments " << r.quality.g0_gap << " of the diagonal apart";
       EXPECT_TRUE(check(r.quality.g1_gap < kG1Threshold, "g1 gap"))

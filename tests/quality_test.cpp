@@ -123,5 +123,28 @@ TEST(DistancesToCurve, PointsFarOutsideAndNearAClothoid) {
   expectAgrees(c, pts, 3.0);
 }
 
+// strayFromPoints against closed forms: a half circle of radius 5 over points along its
+// diameter strays by 5 (its top; the polyline of the points is the diameter), the same
+// half circle over points on it by at most the sagitta of their chords; a segment's
+// gaps and corners of the polyline do not matter, only where the curve goes.
+TEST(StrayFromPoints, HalfCircleOverItsDiameterAndOverItsOwnPoints) {
+  constexpr double kPi = std::numbers::pi;
+  Curve half;
+  half.pieces.push_back({LaSegment::arc(5.0 * kPi, Vec2(0, 0), kPi / 2, -0.2), false});  // (0,0) over (5,5) to (10,0)
+  std::vector<Vec2> diameter;
+  for (int i = 0; i <= 20; ++i) diameter.emplace_back(0.5 * i, 0.0);
+  EXPECT_NEAR(strayFromPoints(half, diameter, 10.0), 5.0, 1e-3);
+  std::vector<Vec2> on;
+  constexpr int kChords = 16;
+  for (int i = 0; i <= kChords; ++i) {
+    const double a = kPi * (1.0 - static_cast<double>(i) / kChords);
+    on.emplace_back(5.0 + 5.0 * std::cos(a), 5.0 * std::sin(a));
+  }
+  const double sagitta = 5.0 * (1.0 - std::cos(kPi / kChords / 2));
+  const double stray = strayFromPoints(half, on, 10.0);
+  EXPECT_LE(stray, sagitta * (1 + 1e-6));
+  EXPECT_GE(stray, 0.9 * sagitta);  // a sample near the middle of some chord
+}
+
 }  // namespace
 }  // namespace la
