@@ -282,8 +282,17 @@ bool attempt(const std::vector<Vec2>& pts, const std::vector<double>& breaks, bo
 
 }  // namespace
 
-SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, const SmoothingOptions& options) {
-  if (pts.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
+SmoothingResult smoothWithBSpline(const std::vector<Vec2>& points, bool closed, const SmoothingOptions& options) {
+  if (points.size() < 4) throw std::invalid_argument("B-spline smoothing needs at least 4 points");
+  // Fitted about the points' centre, then moved back (a B-spline moves with its control
+  // points): the normal equations of points a million units from the origin lose the
+  // digits that tell their shape apart.
+  Vec2 lo = points.front(), hi = points.front();
+  for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const Vec2 centre = 0.5 * (lo + hi);
+  std::vector<Vec2> pts;
+  pts.reserve(points.size());
+  for (const Vec2& q : points) pts.push_back(q - centre);
   if (!(options.tolerance > 0.0)) throw std::invalid_argument("B-spline smoothing needs a positive tolerance");
   const int min_spans = closed ? 4 : 1;
   std::vector<double> breaks;
@@ -400,6 +409,7 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& pts, bool closed, con
     }
   }
 
+  for (Vec2& c : current.control) c += centre;
   result.spline = makeSpline(breaks, current.control, closed);
   result.parameters = current.t;
   result.max_error = current.max_error;

@@ -22,8 +22,8 @@
 //    midpoint falls on, when that truth segment has at least 100 samples (the error
 //    distribution is printed at the end);
 //  - g1 gap below 1e-9 rad and g2 gap below 1e-6 (G2 on, the default Newton solve);
-//  - the same under rotation (1.1 rad), scaling (0.01 and 100) and reversal of the
-//    points: deviation from the transformed truth within the fit's tolerance (so
+//  - the same under rotation (1.1 rad), scaling (0.01 and 100), reversal of the points
+//    and translation by (1e6, -2e6): deviation from the transformed truth within the fit's tolerance (so
 //    relative to the diagonal), the same segment count as the untransformed fit, gaps
 //    below the thresholds;
 //  - the G2 methods: bisection and Newton both reach g2 < 1e-6 with g1 < 1e-9; with G2
@@ -272,8 +272,9 @@ const Truth& truthCase(int index) {
 // ---------------------------------------------------------------------------------
 // Transforms of the stroke (and of the truth with it).
 
-enum class Transform { kNone, kRotate, kScaleSmall, kScaleLarge, kReverse };
+enum class Transform { kNone, kRotate, kScaleSmall, kScaleLarge, kReverse, kTranslate };
 constexpr double kRotation = 1.1;
+const Vec2 kFarAway(1e6, -2e6);  // a scan's coordinates in micrometres, say
 
 const char* toName(Transform t) {
   switch (t) {
@@ -282,15 +283,17 @@ const char* toName(Transform t) {
     case Transform::kScaleSmall: return "scaled0_01";
     case Transform::kScaleLarge: return "scaled100";
     case Transform::kReverse: return "reversed";
+    case Transform::kTranslate: return "moved_far";
   }
   return "?";
 }
 
 struct Similarity {
   double angle = 0.0, scale = 1.0;
+  Vec2 shift = Vec2::Zero();
   Vec2 apply(const Vec2& p) const {
     const double c = std::cos(angle), s = std::sin(angle);
-    return scale * Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y());
+    return scale * Vec2(c * p.x() - s * p.y(), s * p.x() + c * p.y()) + shift;
   }
 };
 
@@ -299,6 +302,7 @@ Similarity similarityOf(Transform t) {
     case Transform::kRotate: return {kRotation, 1.0};
     case Transform::kScaleSmall: return {0.0, 0.01};
     case Transform::kScaleLarge: return {0.0, 100.0};
+    case Transform::kTranslate: return {0.0, 1.0, kFarAway};
     default: return {};
   }
 }
@@ -726,6 +730,7 @@ INSTANTIATE_TEST_SUITE_P(Chains, PipelineTruthTest,
                          ::testing::Combine(::testing::Range(0, kCaseCount),
                                             ::testing::Values(Transform::kNone, Transform::kRotate,
                                                               Transform::kScaleSmall, Transform::kScaleLarge,
+                                                              Transform::kTranslate,
                                                               Transform::kReverse)),
                          caseParamName);
 
@@ -765,7 +770,7 @@ TEST(PipelineTruthGenerator, ChainsAreG2WithVisibleJoints) {
 TEST(PipelineTruthGenerator, MeasurementsAndTransformsAreConsistent) {
   for (int index = 0; index < kCaseCount; ++index) {
     for (Transform tr : {Transform::kNone, Transform::kRotate, Transform::kScaleSmall, Transform::kScaleLarge,
-                         Transform::kReverse}) {
+                         Transform::kReverse, Transform::kTranslate}) {
       const Truth t = transformed(truthCase(index), tr);
       SCOPED_TRACE(caseName(index, tr));
       // distancesToCurve measures against a polyline whose sagitta is at most
