@@ -163,8 +163,8 @@ double msSince(Clock::time_point t0) { return std::chrono::duration<double, std:
 struct Part {
   std::vector<Vec2> points;
   bool closed = false;
-  bool starts_at_corner = false;  // its first point is a corner: its curve starts there exactly
-  bool ends_at_corner = false;    // its last point is a corner: its curve ends there exactly
+  bool starts_at_corner = false;  // its first point is a corner (stage 7 pins the curve's start to it)
+  bool ends_at_corner = false;    // its last point is a corner (stage 7 pins the curve's end to it)
 };
 
 // Points along every step of `p` (and the closing step of a closed part) longer than
@@ -994,7 +994,7 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
 // midpoint, each part's chain by the similarity that takes its two ends to their places
 // (G2 and the alphas stay exactly; a point moves by at most the larger end's move).
 // Where that fails the gap stays, and the quality figures (g0_gap) show it.
-void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed, const G2Options& g2) {
+void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, const G2Options& g2) {
   const std::size_t n = fits.size();
   if (n == 0) return;
   std::vector<Vec2> starts(n), ends(n);
@@ -1005,7 +1005,7 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, b
   }
   std::vector<Vec2> to_start = starts, to_end = ends;
   for (std::size_t k = 0; k < n; ++k) {
-    if (!parts[k].ends_at_corner || (!closed && k + 1 == n)) continue;
+    if (!parts[k].ends_at_corner) continue;
     const std::size_t next = (k + 1) % n;
     to_end[k] = to_start[next] = 0.5 * (ends[k] + starts[next]);
   }
@@ -1129,7 +1129,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     fits.erase(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
   }
-  joinAtCorners(fits, parts, closed, g2OptionsOf(options, diag));
+  joinAtCorners(fits, parts, g2OptionsOf(options, diag));
   for (std::size_t k = 0; k < parts.size(); ++k) {
     PartFit& fit = fits[k];
     r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());
