@@ -69,6 +69,8 @@ constexpr double kSeamReach = 4.0;
 /// A closed curve has at least this many points (stage 2's periodic cubic spline needs
 /// them; three points closed up are a triangle, not a curve).
 constexpr std::size_t kMinClosedPoints = 4;
+/// Coordinates larger than this are refused: squared distances between them overflow.
+constexpr double kLargestCoordinate = 1e150;
 /// The seam search tries at most about this many points of each region (it is
 /// quadratic, and a stroke drawn round and round has all its points there).
 constexpr std::size_t kMaxSeamCandidates = 256;
@@ -618,6 +620,13 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     finite.push_back(raw.samples[i].p);
     finite_source.push_back(i);
   }
+  // Distances between such points overflow (squares above 1e308): every threshold
+  // below would be infinite and every point a duplicate.
+  for (const Vec2& q : finite)
+    if (q.cwiseAbs().maxCoeff() > kLargestCoordinate) {
+      result.points = finite;
+      fail("coordinates beyond 1e150 (distances between them overflow)", samples, result);
+    }
   const double duplicate_distance = kDuplicateTolerance * boundingBoxDiagonal(finite);
   Points pts;
   for (std::size_t i = 0; i < finite.size(); ++i) {

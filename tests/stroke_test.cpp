@@ -220,6 +220,14 @@ TEST(CleanStroke, AClosedCurveHasAtLeastFourPoints) {
   EXPECT_NE(message.find("a closed curve needs at least 4 points"), std::string::npos) << message;
 }
 
+// Coordinates whose squared distances overflow are refused as such, not as "fewer than
+// 3 distinct points" (every distance infinite made every point a duplicate).
+TEST(CleanStroke, RefusesCoordinatesWhoseDistancesOverflow) {
+  const std::string message = errorOf(strokeOf({{1e200, 0}, {0, 1e200}, {-1e200, 0}, {0, -1e200}}));
+  EXPECT_NE(message.find("coordinates beyond 1e150"), std::string::npos) << message;
+  EXPECT_NO_THROW(cleanStroke(strokeOf({{1e140, 0}, {0, 1e140}, {-1e140, 0}, {0, -1e140}})));
+}
+
 TEST(CleanStroke, ThrowsOnCollinearPoints) {
   std::vector<Vec2> line;
   for (int i = 0; i < 20; ++i) line.push_back(Vec2(3.0, -1.0) + 2.5 * i * Vec2(0.6, 0.8));
