@@ -40,16 +40,27 @@ inline double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b) {
   return (a + t * ab - p).norm();
 }
 
+/// Axis-aligned bounding box (both corners at the origin for no points).
+struct BoundingBox {
+  Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
+  Vec2 centre() const { return 0.5 * (lo + hi); }
+};
+
+inline BoundingBox boundingBoxOf(const std::vector<Vec2>& points) {
+  if (points.empty()) return {};
+  BoundingBox box{points.front(), points.front()};
+  for (const Vec2& p : points) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  return box;
+}
+
 /// Diagonal of the axis-aligned bounding box (0 for no points): the scale every
 /// relative tolerance and figure in the project refers to.
 inline double boundingBoxDiagonal(const std::vector<Vec2>& points) {
-  if (points.empty()) return 0.0;
-  Vec2 lo = points.front(), hi = points.front();
-  for (const Vec2& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
+  const BoundingBox box = boundingBoxOf(points);
+  return (box.hi - box.lo).norm();
 }
 
 }  // namespace la

@@ -287,9 +287,7 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& points, bool closed, 
   // Fitted about the points' centre, then moved back (a B-spline moves with its control
   // points): the normal equations of points a million units from the origin lose the
   // digits that tell their shape apart.
-  Vec2 lo = points.front(), hi = points.front();
-  for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
-  const Vec2 centre = 0.5 * (lo + hi);
+  const Vec2 centre = boundingBoxOf(points).centre();
   std::vector<Vec2> pts;
   pts.reserve(points.size());
   for (const Vec2& q : points) pts.push_back(q - centre);

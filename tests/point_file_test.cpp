@@ -235,7 +235,7 @@ TEST(PointFileCsv, DecimalCommasAreRefusedNotReadAsFourColumns) {
 TEST(PointFileCsv, FirstLineMixingNumbersAndTextIsAnErrorNotAHeader) {
   // A damaged first point was skipped as a header, losing it unsaid.
   expectError("13.0x,0.5\n1,2\n3,4\n", "first.csv", {"first.csv:1:", "non-numeric", "13.0x"});
-  expectError("\xEF\xBB\xBF\xEF\xBB\xBF1,2\n3,4\n", "bom2.csv", {"bom2.csv:1:", "non-numeric"});
+  expectError("\xEF\xBB\xBF\xEF\xBB\xBF" "1,2\n3,4\n", "bom2.csv", {"bom2.csv:1:", "non-numeric"});
   // A header of names still is one.
   EXPECT_EQ(parseStrokes("px,py\n1,2\n", "names.csv")[0].samples.size(), 1u);
 }
