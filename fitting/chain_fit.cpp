@@ -1136,6 +1136,17 @@ Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const
   return chain;
 }
 
+std::vector<LaSegment> movedOntoEnds(const std::vector<LaSegment>& segments, const Vec2& start, const Vec2& end) {
+  const Vec2 origin = segments.front().start(), from = segments.back().end() - origin, to = end - start;
+  const double scale = to.norm() / from.norm(), turn = signedAngle(from, to);
+  const Eigen::Rotation2Dd rotation(turn);
+  std::vector<LaSegment> out;
+  for (const LaSegment& s : segments)
+    out.emplace_back(s.alpha(), scale * s.length(), Vec2(start + scale * (rotation * (s.start() - origin))),
+                     s.theta0() + turn, s.kappaStart() / scale, s.kappaEnd() / scale);
+  return out;
+}
+
 std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
                                     const G2Options& options, double reach) {
   if (!segments.empty()) {
@@ -1151,18 +1162,10 @@ std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool
     // The similarity about the start that takes the chain's end onto `end`. It moves a
     // point by the end's miss times the point's distance from the start over the end's,
     // and no point is further from the start than the chain's length.
-    const Vec2 start = segments.front().start(), from = segments.back().end() - start, to = end - start;
+    const Vec2 start = segments.front().start(), from = segments.back().end() - start;
     double length = 0.0;
     for (const LaSegment& s : segments) length += s.length();
-    if ((end - segments.back().end()).norm() * length <= reach * from.norm()) {
-      const double scale = to.norm() / from.norm(), turn = signedAngle(from, to);
-      const Eigen::Rotation2Dd rotation(turn);
-      std::vector<LaSegment> out;
-      for (const LaSegment& s : segments)
-        out.emplace_back(s.alpha(), scale * s.length(), start + scale * (rotation * (s.start() - start)),
-                         s.theta0() + turn, s.kappaStart() / scale, s.kappaEnd() / scale);
-      return out;
-    }
+    if ((end - segments.back().end()).norm() * length <= reach * from.norm()) return movedOntoEnds(segments, start, end);
   }
   Chain chain = chainOfSegments(segments, closed, end);
   const G2Result res = makeG2(chain, options);

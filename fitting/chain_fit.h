@@ -122,6 +122,12 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
 /// or the start again for a closed chain).
 Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const Vec2& end);
 
+/// The chain moved, turned and scaled so that its start lands on `start` and its end on
+/// `end` (the similarity of those two points): G2 and the alphas stay exactly; a point
+/// moves by at most the larger of the two ends' moves. Its start and end must differ,
+/// as must `start` and `end`.
+std::vector<LaSegment> movedOntoEnds(const std::vector<LaSegment>& segments, const Vec2& start, const Vec2& end);
+
 /// Makes a nearly closed or nearly corner-ended chain exact. One that is, to 1e-10 of its
 /// length (and in tangent, closed), comes back as it is. An open chain is scaled and
 /// rotated about its start until its end is at `end`, if that moves no point of it by

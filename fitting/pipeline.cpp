@@ -8,7 +8,6 @@
 #include <string>
 
 #include <Eigen/Dense>
-#include <Eigen/Geometry>
 
 #include "core/lcg.h"
 #include "core/three_point_segment.h"
@@ -963,7 +962,6 @@ void polishPart(PartFit& fit, const Part& part, double tol, double noise, double
     if (polished.max_distance >= fit.max_dev) return;
   }
   fit.max_dev = polished.max_distance;
-  fit.stray = NAN;  // (measured where needed)
   fit.warnings.clear();
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
@@ -992,8 +990,7 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
 // result not kept) ends where its smoothing spline does, up to about a tolerance from
 // the corner: the curve would be broken there. Each such pair of ends moves to their
 // midpoint, each part's chain by the similarity that takes its two ends to their places
-// (G2 and the alphas stay exactly; a point moves by at most the larger end's move).
-// Where that fails the gap stays, and the quality figures (g0_gap) show it.
+// (movedOntoEnds). Where that fails the gap stays, and g0_gap shows it.
 void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, const G2Options& g2) {
   const std::size_t n = fits.size();
   if (n == 0) return;
@@ -1016,16 +1013,12 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
       // A part from a closed stroke's only corner back to it: no similarity closes it, a
       // joint deformation (as stage 6) takes its end to its start.
       std::vector<LaSegment> closed_up = snapToJoints(fits[k].segments, false, starts[k], g2);
-      if (!closed_up.empty()) fits[k].segments = std::move(closed_up);
-      continue;
+      if (closed_up.empty()) continue;
+      fits[k].segments = std::move(closed_up);
+    } else {
+      fits[k].segments = movedOntoEnds(fits[k].segments, to_start[k], to_end[k]);
     }
-    const double scale = to.norm() / from.norm(), turn = signedAngle(from, to);
-    const Eigen::Rotation2Dd rotation(turn);
-    std::vector<LaSegment> moved;
-    for (const LaSegment& s : fits[k].segments)
-      moved.emplace_back(s.alpha(), scale * s.length(), Vec2(to_start[k] + scale * (rotation * (s.start() - starts[k]))),
-                         s.theta0() + turn, s.kappaStart() / scale, s.kappaEnd() / scale);
-    fits[k].segments = std::move(moved);
+    fits[k].max_dev = fits[k].stray = NAN;  // (of the chain before the move)
   }
 }
 
@@ -1148,8 +1141,11 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.quality = measureQuality(r.curve, r.cleaned.points);
   r.timings.quality_ms = msSince(tq);
   // Said from the measured figures, whichever stage or start the curve came from.
-  double stray = 0.0;
-  for (std::size_t k = 0; k < parts.size(); ++k) stray = std::max(stray, strayOf(fits[k].segments, parts[k], diag));
+  double stray = 0.0;  // (fitOne measured most parts already)
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    if (std::isnan(fits[k].stray)) fits[k].stray = strayOf(fits[k].segments, parts[k], diag);
+    stray = std::max(stray, fits[k].stray);
+  }
   if (stray > kStrayWarning * r.tolerance)
     r.warnings.push_back("the curve strays up to " + std::to_string(stray) + " from the stroke, where no point is");
   if (r.quality.max_dev > r.tolerance)
