@@ -125,15 +125,10 @@ bool degenerate(const Stroke& stroke, std::string& why) {
   return false;
 }
 
-bool raisedTolerance(const FitResult& r) {
+// Whether one of the fit's warnings says `what`.
+bool warns(const FitResult& r, const char* what) {
   for (const std::string& w : r.warnings)
-    if (w.find("tolerance raised") != std::string::npos) return true;
-  return false;
-}
-
-bool saysItMisses(const FitResult& r) {
-  for (const std::string& w : r.warnings)
-    if (w.find("misses the tolerance") != std::string::npos) return true;
+    if (w.find(what) != std::string::npos) return true;
   return false;
 }
 
@@ -217,7 +212,7 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
       ++fitted;
       segments += r.quality.segments;
       extrema += r.quality.extrema;
-      if (raisedTolerance(r)) ++raised;
+      if (warns(r, "tolerance raised")) ++raised;
       const double ratio = r.quality.max_dev / r.tolerance;
       if (!(ratio <= worst_ratio)) worst_ratio = ratio, worst_where = where;
 
@@ -237,7 +232,7 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
       EXPECT_TRUE(check(r.quality.g2_gap < kG2Threshold, "g2 gap"))
           << where << ": g2 gap " << r.quality.g2_gap << " >= " << kG2Threshold;
       // A miss is never silent: the result says so in its warnings.
-      EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance || saysItMisses(r), "silent miss"))
+      EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance || warns(r, "misses the tolerance"), "silent miss"))
           << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " without a warning";
       if (within_tolerance) {
         EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance), "max_dev > tolerance"))

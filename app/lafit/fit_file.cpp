@@ -52,9 +52,9 @@ FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, b
     } catch (const std::bad_alloc&) {
       throw;
     } catch (const std::exception& e) {
-      // A stage refusing what the clean-up let through (e.g. B-spline smoothing left
-      // with fewer than 4 points): still this stroke only, and the message must say
-      // which file and stroke, which the stage's own words do not.
+      // A stage refusing what the clean-up let through (a closed stroke of 3 points did,
+      // until the clean-up refused it): still this stroke only, and the message must
+      // say which file and stroke, which the stage's own words do not.
       why = where + "stroke cannot be fitted: " + e.what();
     }
     curves.push_back({{"error", why}});
