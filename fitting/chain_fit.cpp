@@ -929,7 +929,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   bin.push_back(0);
   for (std::size_t j = 0; j + 1 < used_count; ++j) bin.push_back(j == 0 ? 1 : j + 2 == used_count ? m - 1 : (pick[j] + pick[j + 1]) / 2 + 1);
   bin.push_back(m);
-  auto weight = [&](std::size_t k) { return options.weights.empty() ? 1.0 : options.weights[k]; };
+  auto weight2 = [&](std::size_t k) { return options.weights.empty() ? 1.0 : options.weights[k] * options.weights[k]; };
   const double noise = options.noise / scale;
   std::vector<Vec2> used_points;
   std::vector<ChainFoot> used_feet;
@@ -941,10 +941,10 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     const FootFrame f = projectFoot(model, points[k], foot, kFirstFootSteps);
     const double sagitta = std::abs(f.kappa) * (points[to - 1] - points[from]).squaredNorm() / 8.0;
     Vec2 point = points[k];
-    double w2 = weight(k) * weight(k), distance = (f.point - point).norm();
+    double w2 = weight2(k), distance = (f.point - point).norm();
     if (to - from > 1 && sagitta <= kBinBias * noise) {
       point = Vec2::Zero(), w2 = 0.0;
-      for (std::size_t i = from; i < to; ++i) point += weight(i) * weight(i) * points[i], w2 += weight(i) * weight(i);
+      for (std::size_t i = from; i < to; ++i) point += weight2(i) * points[i], w2 += weight2(i);
       point = w2 > 0.0 ? Vec2(point / w2) : points[k];
       distance = (projectFoot(model, point, foot, kFootSteps).point - point).norm();
     }
