@@ -346,8 +346,15 @@ struct ChainGeometry {
   std::vector<Eigen::Matrix2d> rotations;  // of each segment's start angle
   double total_length = 0.0;
   bool closed = false;
+  std::vector<bool> corner;  // per segment: it starts at a corner (empty: none)
 
   std::size_t size() const { return laws.size(); }
+  bool cornerAtStart(std::size_t i) const { return !corner.empty() && corner[i]; }
+  bool cornerAtEnd(std::size_t i) const { return i + 1 < size() ? cornerAtStart(i + 1) : closed && cornerAtStart(0); }
+  // A foot on a corner: the point's nearest point there has no normal through the point.
+  bool atCorner(const ChainFoot& f) const {
+    return (f.u == 0.0 && cornerAtStart(f.segment)) || (f.u == 1.0 && cornerAtEnd(f.segment));
+  }
   double length(std::size_t i) const { return laws[i].length; }
   FootFrame frame(const ChainFoot& f) const {
     Vec2 p, t;
@@ -358,11 +365,25 @@ struct ChainGeometry {
   }
 };
 
+// The segments a point's foot may be on. With corners, those of the point's own part
+// (between the corners around it), and a corner's own point sits on the corner
+// (`pinned`, at the start of segment `first`).
+struct FootRange {
+  std::size_t first = 0, last = SIZE_MAX;
+  bool pinned = false;
+};
+
 // Newton steps on the closest-point condition t . (X - P(s)) = 0, s the arc length
-// along the chain, crossing joints (and a closed chain's seam) as needed; returns the
-// frame at the final foot.
-FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot, int steps) {
+// along the chain, crossing joints (and a closed chain's seam) as needed, within
+// `range` if given (its ends stop the foot as the chain's do); returns the frame at the
+// final foot.
+FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot, int steps,
+                      const FootRange* range = nullptr) {
   const std::size_t n = g.size();
+  const std::size_t first = range ? range->first : 0, last = range ? std::min(range->last, n - 1) : n - 1;
+  const bool wraps = g.closed && !range;
+  if (foot.segment < first) foot = {first, 0.0};
+  if (foot.segment > last) foot = {last, 1.0};
   FootFrame f = g.frame(foot);
   for (int step = 0; step < steps; ++step) {
     const Vec2 d = point - f.point;
@@ -370,7 +391,7 @@ FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot
     double s = foot.u * g.length(foot.segment) + ds;
     std::size_t i = foot.segment;
     for (std::size_t guard = 0; guard <= n && s > g.length(i); ++guard) {
-      if (i + 1 < n || g.closed) {
+      if (i < last || wraps) {
         s -= g.length(i);
         i = (i + 1) % n;
       } else {
@@ -378,7 +399,7 @@ FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot
       }
     }
     for (std::size_t guard = 0; guard <= n && s < 0.0; ++guard) {
-      if (i > 0 || g.closed) {
+      if (i > first || wraps) {
         i = (i + n - 1) % n;
         s += g.length(i);
       } else {
@@ -393,7 +414,8 @@ FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot
 }
 
 // Nearest node of a polyline of the chain for every point: the first feet.
-std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2>& points) {
+std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2>& points,
+                                  const std::vector<FootRange>& ranges = {}) {
   std::vector<std::pair<Vec2, ChainFoot>> nodes;
   for (std::size_t i = 0; i < g.size(); ++i)
     for (int k = 0; k <= kCoarseFeetSamples; ++k) {
@@ -402,9 +424,11 @@ std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2
     }
   std::vector<ChainFoot> feet(points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
+    const FootRange range = ranges.empty() ? FootRange{} : ranges[k];
     double best = INFINITY;
     for (const auto& [p, f] : nodes)
-      if (const double d = (p - points[k]).squaredNorm(); d < best) best = d, feet[k] = f;
+      if (const double d = (p - points[k]).squaredNorm(); d < best && f.segment >= range.first && f.segment <= range.last)
+        best = d, feet[k] = f;
   }
   return feet;
 }
@@ -413,24 +437,29 @@ std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2
 // root mean square), found again from the nearest coarse node: a foot carried over from
 // an edited chain or a rough start can sit on a far part of the chain, where Newton
 // settles on a local closest point. `distance` (of the points at their feet) is updated.
-// With `pinned_ends`, the first and last points keep theirs (an open chain's ends).
+// With `pinned_ends`, the first and last points keep theirs (an open chain's ends); a
+// pinned range's point keeps its foot too, and each stays within its range.
 void refineOutlyingFeet(const ChainGeometry& g, const std::vector<Vec2>& points, std::vector<ChainFoot>& feet,
-                        std::vector<double>& distance, bool pinned_ends = false) {
+                        std::vector<double>& distance, bool pinned_ends = false,
+                        const std::vector<FootRange>& ranges = {}) {
   double ssq = 0.0;
   for (double d : distance) ssq += d * d;
   const double limit = kOutlyingFoot * std::sqrt(ssq / static_cast<double>(distance.size()));
   std::vector<Vec2> far;
   std::vector<std::size_t> which;
+  std::vector<FootRange> far_ranges;
   for (std::size_t k = pinned_ends ? 1 : 0; k + (pinned_ends ? 1 : 0) < points.size(); ++k)
-    if (distance[k] > limit) {
+    if (distance[k] > limit && (ranges.empty() || !ranges[k].pinned)) {
       far.push_back(points[k]);
       which.push_back(k);
+      if (!ranges.empty()) far_ranges.push_back(ranges[k]);
     }
   if (far.empty()) return;
-  const std::vector<ChainFoot> fresh = coarseFeet(g, far);
+  const std::vector<ChainFoot> fresh = coarseFeet(g, far, far_ranges);
   for (std::size_t j = 0; j < far.size(); ++j) {
     ChainFoot foot = fresh[j];
-    const double d = (projectFoot(g, far[j], foot, kFirstFootSteps).point - far[j]).norm();
+    const FootRange* range = far_ranges.empty() ? nullptr : &far_ranges[j];
+    const double d = (projectFoot(g, far[j], foot, kFirstFootSteps, range).point - far[j]).norm();
     if (d < distance[which[j]]) {
       distance[which[j]] = d;
       feet[which[j]] = foot;
@@ -444,7 +473,11 @@ struct Layout {
   bool closed = false, fix_start = false, fix_end = false;
   int start = -1;                 // x of the start point (y follows), -1 if fixed
   int theta = 0;
-  std::vector<int> kappa;         // per joint: signed curvature, -1 for a zero joint (closed: last = first)
+  // per segment: its start and end curvatures (signed; -1 for zero), one unknown shared
+  // by the two sides of a smooth joint, one per side at a corner
+  std::vector<int> kappa_start, kappa_end;
+  std::vector<int> corner_turn;   // per joint 0..n: the tangent's turn at a corner, else -1
+  bool seam_corner = false;       // closed: the chain returns to its start in position only
   std::vector<int> turning, alpha;  // per segment: log |total turning| (sets the length), alpha
   std::vector<ZeroEnd> zero;      // per segment
   std::vector<double> turn_sign;  // per segment
@@ -455,13 +488,13 @@ struct Layout {
   double prior_alpha = 0.0, prior_weight = 0.0;  // residual prior_weight (alpha - prior_alpha) per segment
   int size = 0;
 
-  int constraints() const { return closed ? 3 : fix_end ? 2 : 0; }
+  int constraints() const { return closed ? (seam_corner ? 2 : 3) : fix_end ? 2 : 0; }
   Law law(const Eigen::VectorXd& x, std::size_t i) const {
     Law l;
     l.alpha = x[alpha[i]];
     l.zero = zero[i];
-    l.y0 = l.zero == ZeroEnd::kStart ? 0.0 : std::log(std::abs(x[kappa[i]]));
-    l.y1 = l.zero == ZeroEnd::kEnd ? 0.0 : std::log(std::abs(x[kappa[i + 1]]));
+    l.y0 = l.zero == ZeroEnd::kStart ? 0.0 : std::log(std::abs(x[kappa_start[i]]));
+    l.y1 = l.zero == ZeroEnd::kEnd ? 0.0 : std::log(std::abs(x[kappa_end[i]]));
     l.log_turning = x[turning[i]];
     l.length = std::exp(l.log_turning) / unitTurning(l.alpha, l.y0, l.y1, l.zero);
     l.sign = turn_sign[i];
@@ -492,6 +525,8 @@ struct ChainModel : ChainGeometry {
 bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
   const std::size_t n = layout.segments;
   m.closed = layout.closed;
+  m.corner.assign(n, false);
+  for (std::size_t i = 0; i < n; ++i) m.corner[i] = layout.corner_turn[i] >= 0 || (i == 0 && layout.seam_corner);
   m.laws.resize(n);
   m.panels.resize(n);
   m.rotations.resize(n);
@@ -515,8 +550,8 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
     buildPanels(law, p);
     if (derivatives) {
       buildPanels(law, m.jets[i]);
-      const int k0 = law.zero == ZeroEnd::kStart ? -1 : layout.kappa[i];
-      const int k1 = law.zero == ZeroEnd::kEnd ? -1 : layout.kappa[i + 1];
+      const int k0 = law.zero == ZeroEnd::kStart ? -1 : layout.kappa_start[i];
+      const int k1 = law.zero == ZeroEnd::kEnd ? -1 : layout.kappa_end[i];
       m.columns[i] = {layout.alpha[i], k0, k1, layout.turning[i]};
       // d log|kappa| / d kappa = 1 / kappa
       m.factors[i] = {1.0, k0 < 0 ? 0.0 : 1.0 / x[k0], k1 < 0 ? 0.0 : 1.0 / x[k1], 1.0};
@@ -527,7 +562,8 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
     const Eigen::Matrix2d& r = m.rotations[i] = rotation(m.angle[i]);
     const Vec2 world = r * Vec2(ex, ey);
     m.start[i + 1] = m.start[i] + world;
-    m.angle[i + 1] = m.angle[i] + turn;
+    const int corner = layout.corner_turn[i + 1];
+    m.angle[i + 1] = m.angle[i] + turn + (corner >= 0 ? x[corner] : 0.0);
     if (!derivatives) continue;
     const PoseJacobian& here = m.pose_jacobian[i];
     PoseJacobian& next = m.pose_jacobian[i + 1];
@@ -546,6 +582,7 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
       next(1, col) += f * d.y();
       next(2, col) += f * jt.v[c];
     }
+    if (corner >= 0) next(2, corner) += 1.0;
   }
   return true;
 }
@@ -554,7 +591,7 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
 // no rows when there are none.
 Eigen::MatrixXd constraintJacobian(const Layout& layout, const ChainModel& m) {
   const std::size_t n = layout.segments;
-  if (layout.closed) return m.pose_jacobian[n] - m.pose_jacobian[0];
+  if (layout.closed) return (m.pose_jacobian[n] - m.pose_jacobian[0]).topRows(layout.constraints());
   if (layout.fix_end) return m.pose_jacobian[n].topRows(2);
   return Eigen::MatrixXd::Zero(0, layout.size);
 }
@@ -570,8 +607,9 @@ Eigen::VectorXd movedOntoConstraints(const Layout& layout, const Eigen::VectorXd
 // The points of the problem with their feet and residuals.
 class ChainProblem {
  public:
-  ChainProblem(const Layout& layout, const std::vector<Vec2>& points, const std::vector<double>& weights)
-      : layout_(layout), points_(points), weights_(weights) {}
+  ChainProblem(const Layout& layout, const std::vector<Vec2>& points, const std::vector<double>& weights,
+               const std::vector<FootRange>& ranges)
+      : layout_(layout), points_(points), weights_(weights), ranges_(ranges) {}
 
   // One row per point (its tangent distance), for an open chain the tangential
   // components of its two end points (pinned to the chain's ends), and one per segment
@@ -590,12 +628,14 @@ class ChainProblem {
       feet.back() = {layout_.segments - 1, 1.0};
     }
     for (std::size_t k = 0; k < n_points; ++k) {
-      const bool pinned = !layout_.closed && (k == 0 || k + 1 == n_points);
-      frames[k] = pinned || !project ? m.frame(feet[k]) : projectFoot(m, points_[k], feet[k], kFootSteps);
+      const FootRange* range = ranges_.empty() ? nullptr : &ranges_[k];
+      if (range && range->pinned) feet[k] = {range->first, 0.0};
+      const bool pinned = (!layout_.closed && (k == 0 || k + 1 == n_points)) || (range && range->pinned);
+      frames[k] = pinned || !project ? m.frame(feet[k]) : projectFoot(m, points_[k], feet[k], kFootSteps, range);
     }
     r.resize(static_cast<Eigen::Index>(rows()));
     for (std::size_t k = 0; k < n_points; ++k)
-      r[static_cast<Eigen::Index>(k)] = weights_[k] * frames[k].normal().dot(frames[k].point - points_[k]);
+      r[static_cast<Eigen::Index>(k)] = weights_[k] * direction(m, feet[k], frames[k], k).dot(frames[k].point - points_[k]);
     if (!layout_.closed) {
       const std::size_t last = n_points - 1;
       r[static_cast<Eigen::Index>(n_points)] =
@@ -607,7 +647,9 @@ class ChainProblem {
       r[static_cast<Eigen::Index>(n_points + ends() + i)] = layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
     c.resize(layout_.constraints());
     const std::size_t n = layout_.segments;
-    if (layout_.closed) {
+    if (layout_.closed && layout_.seam_corner) {
+      c << m.start[n] - m.start[0];
+    } else if (layout_.closed) {
       c << m.start[n] - m.start[0], m.angle[n] - m.angle[0] - layout_.total_turning;
     } else if (layout_.fix_end) {
       c << m.start[n] - layout_.end_point;
@@ -636,7 +678,7 @@ class ChainProblem {
         if (col >= 0) out[col] += m.factors[f.segment][c] * (local.x() * px.v[c] + local.y() * py.v[c]);
       }
     };
-    for (std::size_t k = 0; k < n_points; ++k) add(static_cast<Eigen::Index>(k), k, frames[k].normal());
+    for (std::size_t k = 0; k < n_points; ++k) add(static_cast<Eigen::Index>(k), k, direction(m, feet[k], frames[k], k));
     if (!layout_.closed) {
       const std::size_t last = n_points - 1;
       if (!layout_.fix_start) add(static_cast<Eigen::Index>(n_points), 0, frames[0].tangent);
@@ -648,9 +690,18 @@ class ChainProblem {
   }
 
  private:
+  // Of a point's residual: the normal at its foot (the tangent distance), or at a corner
+  // towards the point (the distance itself).
+  Vec2 direction(const ChainModel& m, const ChainFoot& foot, const FootFrame& frame, std::size_t k) const {
+    const Vec2 away = frame.point - points_[k];
+    if (!m.atCorner(foot) || !(away.norm() > 0.0)) return frame.normal();
+    return away.normalized();
+  }
+
   const Layout& layout_;
   const std::vector<Vec2>& points_;
   const std::vector<double>& weights_;
+  const std::vector<FootRange>& ranges_;  // per point (empty: the whole chain)
 };
 
 // The damped, bound- and equality-constrained Gauss-Newton model: unknowns at a bound
@@ -852,14 +903,47 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     add(0.0, -INFINITY, INFINITY, kMaxPointStep);
   }
   layout.theta = add(initial.front().theta0(), -INFINITY, INFINITY, kMaxAngleStep);
-  // Joint curvatures (the geometric mean of the two sides where a G2 chain has round-off).
+  // Corners: joints where only the position is continuous; each point's foot stays on
+  // its part's segments (FootRange).
+  const std::size_t m = points.size();
+  std::vector<bool> corner(n + 1, false);
+  std::vector<FootRange> ranges;
+  for (std::size_t a = 0; a < options.corners.size(); ++a) {
+    const ChainCorner& c = options.corners[a];
+    const bool first = a == 0;
+    const ChainCorner before = first ? ChainCorner{0, 0} : options.corners[a - 1];
+    const bool ordered = first ? (options.closed ? c.joint == 0 && c.point == 0 : c.joint > 0 && c.point > 0)
+                               : c.joint > before.joint && c.point > before.point;
+    if (!ordered || c.joint >= n || c.point + 1 >= m)
+      return refuse("corner " + std::to_string(a) + " (joint " + std::to_string(c.joint) + ", point " +
+                    std::to_string(c.point) + ") is out of order or not inside the chain");
+    corner[c.joint] = true;
+    if (first) ranges.assign(m, FootRange{0, c.joint - 1});  // (open: the points before it)
+    const std::size_t next_joint = a + 1 < options.corners.size() ? options.corners[a + 1].joint : n;
+    ranges[c.point] = {c.joint, c.joint, true};
+    for (std::size_t k = c.point + 1; k < m; ++k) ranges[k] = {c.joint, next_joint - 1};
+  }
+  layout.seam_corner = options.closed && corner[0];
+  // Curvature values: one per smooth joint (the geometric mean of the two sides where a
+  // G2 chain has round-off), one per side of a corner; each segment's ends name theirs.
   const std::size_t joints = options.closed ? n : n + 1;
   std::vector<double> kappa;
+  std::vector<std::size_t> at_start(n), at_end(n);
   for (std::size_t j = 0; j < joints; ++j) {
     const double right = j < n ? initial[j].kappaStart() : initial[n - 1].kappaEnd();
     const double left = j > 0 ? initial[j - 1].kappaEnd() : (options.closed ? initial[n - 1].kappaEnd() : right);
+    const std::size_t before = (j + n - 1) % n;  // (an open chain's joint 0 has none)
+    if (corner[j]) {
+      at_end[before] = kappa.size();
+      kappa.push_back(left * scale);
+      at_start[j] = kappa.size();
+      kappa.push_back(right * scale);
+      continue;
+    }
     if (!sameSign(left, right) && left != 0.0 && right != 0.0)
       return refuse("curvature changes sign at joint " + std::to_string(j) + " without an inflection");
+    if (j < n) at_start[j] = kappa.size();
+    if (j > 0 || options.closed) at_end[j > 0 ? j - 1 : before] = kappa.size();
     kappa.push_back((left == 0.0 || right == 0.0) ? 0.0 : std::copysign(std::sqrt(left * right), right) * scale);
   }
   double kappa_max = 0.0;
@@ -869,21 +953,25 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   double floor = kKappaFloor * kappa_max;
   for (double k : kappa)
     if (k != 0.0) floor = std::min(floor, std::abs(k));
+  std::vector<int> kappa_unknown;
   for (double k : kappa) {
     if (k == 0.0) {
-      layout.kappa.push_back(-1);
+      kappa_unknown.push_back(-1);
       continue;
     }
     const double value = std::copysign(std::max(std::abs(k), floor), k);
-    layout.kappa.push_back(k > 0.0 ? add(value, floor, INFINITY, kMaxRelativeKappaStep * std::abs(value))
-                                   : add(value, -INFINITY, -floor, kMaxRelativeKappaStep * std::abs(value)));
+    kappa_unknown.push_back(k > 0.0 ? add(value, floor, INFINITY, kMaxRelativeKappaStep * std::abs(value))
+                                    : add(value, -INFINITY, -floor, kMaxRelativeKappaStep * std::abs(value)));
   }
-  if (options.closed) layout.kappa.push_back(layout.kappa.front());
+  double turning = 0.0;  // summed: the segments' own theta0 may be wrapped
+  layout.corner_turn.assign(n + 1, -1);
   for (std::size_t i = 0; i < n; ++i) {
-    const bool zero0 = layout.kappa[i] < 0, zero1 = layout.kappa[i + 1] < 0;
+    layout.kappa_start.push_back(kappa_unknown[at_start[i]]);
+    layout.kappa_end.push_back(kappa_unknown[at_end[i]]);
+    const bool zero0 = layout.kappa_start[i] < 0, zero1 = layout.kappa_end[i] < 0;
     if (zero0 && zero1) return refuse("segment " + std::to_string(i) + " is straight");
     layout.zero.push_back(zero0 ? ZeroEnd::kStart : zero1 ? ZeroEnd::kEnd : ZeroEnd::kNone);
-    layout.turn_sign.push_back((zero0 ? kappa[(i + 1) % joints] : kappa[i]) < 0.0 ? -1.0 : 1.0);  // (closed: joint n is 0)
+    layout.turn_sign.push_back((zero0 ? kappa[at_end[i]] : kappa[at_start[i]]) < 0.0 ? -1.0 : 1.0);
     const double log_turning = std::log(std::abs(initial[i].turning()));
     layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
     const double lo = options.min_alpha;
@@ -893,9 +981,14 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     const double cap = std::max(kInflectionAlphaCap, std::min(a, 0.0));
     const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : options.max_alpha;
     layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
+    turning += initial[i].turning();
+    if (i + 1 < n && corner[i + 1]) {
+      const LaSegment& before = initial[i];
+      const double turn = wrapAngle(initial[i + 1].theta0() - before.theta(before.length()));
+      layout.corner_turn[i + 1] = add(turn, -std::numbers::pi, std::numbers::pi, kMaxAngleStep);
+      turning += turn;
+    }
   }
-  double turning = 0.0;  // summed: the segments' own theta0 may be wrapped
-  for (const LaSegment& s : initial) turning += s.turning();
   layout.total_turning = 2.0 * std::numbers::pi * std::round(turning / (2.0 * std::numbers::pi));
   layout.size = static_cast<int>(x0.size());
   layout.prior_alpha = options.alpha_prior;
@@ -908,7 +1001,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
 
   ChainModel model;
   if (!buildModel(layout, x, true, model)) return refuse("the initial chain cannot be modelled");
-  std::vector<ChainFoot> feet = initial_feet.empty() ? coarseFeet(model, points) : initial_feet;
+  std::vector<ChainFoot> feet = initial_feet.empty() ? coarseFeet(model, points, ranges) : initial_feet;
 
   // The iterations use all points or, beyond max_points, an even subsample (the ends
   // kept) in which each picked point stands in for its bin of neighbours by their
@@ -921,11 +1014,15 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   // 0.3, now 32). Where the chain bends across a bin by more than
   // kBinBias of the noise (its centroid would sit inside the bend), or no noise is
   // given, the picked point stands alone.
-  const std::size_t m = points.size();
-  const std::size_t used_count = options.max_points > 2 ? std::min(m, options.max_points) : m;
+  // (corner points are picked too, and stand alone: a centroid would cut the corner)
+  const std::size_t even_count = options.max_points > 2 ? std::min(m, options.max_points) : m;
   // bin j is [bin[j], bin[j + 1]), around pick[j]
   std::vector<std::size_t> pick, bin;
-  for (std::size_t j = 0; j < used_count; ++j) pick.push_back(used_count == m ? j : j * (m - 1) / (used_count - 1));
+  for (std::size_t j = 0; j < even_count; ++j) pick.push_back(even_count == m ? j : j * (m - 1) / (even_count - 1));
+  for (const ChainCorner& c : options.corners) pick.push_back(c.point);
+  std::sort(pick.begin(), pick.end());
+  pick.erase(std::unique(pick.begin(), pick.end()), pick.end());
+  const std::size_t used_count = pick.size();
   bin.push_back(0);
   for (std::size_t j = 0; j + 1 < used_count; ++j) bin.push_back(j == 0 ? 1 : j + 2 == used_count ? m - 1 : (pick[j] + pick[j + 1]) / 2 + 1);
   bin.push_back(m);
@@ -934,27 +1031,30 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   std::vector<Vec2> used_points;
   std::vector<ChainFoot> used_feet;
   std::vector<double> used_distance, used_weights;
+  std::vector<FootRange> used_ranges;
   for (std::size_t j = 0; j < used_count; ++j) {
     const std::size_t k = pick[j], from = bin[j], to = bin[j + 1];
-    ChainFoot foot = feet[k];
+    const FootRange* range = ranges.empty() ? nullptr : &ranges[k];
+    ChainFoot foot = range && range->pinned ? ChainFoot{range->first, 0.0} : feet[k];
     // the given feet may be rough (from the spline's parameters, or an edited chain's)
-    const FootFrame f = projectFoot(model, points[k], foot, kFirstFootSteps);
+    const FootFrame f = range && range->pinned ? model.frame(foot) : projectFoot(model, points[k], foot, kFirstFootSteps, range);
     const double sagitta = std::abs(f.kappa) * (points[to - 1] - points[from]).squaredNorm() / 8.0;
     Vec2 point = points[k];
     double w2 = weight2(k), distance = (f.point - point).norm();
-    if (to - from > 1 && sagitta <= kBinBias * noise) {
+    if (to - from > 1 && sagitta <= kBinBias * noise && !(range && range->pinned)) {
       point = Vec2::Zero(), w2 = 0.0;
       for (std::size_t i = from; i < to; ++i) point += weight2(i) * points[i], w2 += weight2(i);
       point = w2 > 0.0 ? Vec2(point / w2) : points[k];
-      distance = (projectFoot(model, point, foot, kFootSteps).point - point).norm();
+      distance = (projectFoot(model, point, foot, kFootSteps, range).point - point).norm();
     }
     used_points.push_back(point);
     used_weights.push_back(std::sqrt(w2));
     used_distance.push_back(distance);
     used_feet.push_back(foot);
+    if (range) used_ranges.push_back(*range);
   }
-  refineOutlyingFeet(model, used_points, used_feet, used_distance, !options.closed);
-  const ChainProblem used(layout, used_points, used_weights);
+  refineOutlyingFeet(model, used_points, used_feet, used_distance, !options.closed, used_ranges);
+  const ChainProblem used(layout, used_points, used_weights, used_ranges);
   std::vector<FootFrame> frames;
   Eigen::VectorXd r, c;
   used.evaluate(model, used_feet, frames, r, c);
@@ -979,23 +1079,28 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     double theta = mm.angle[0];
     for (std::size_t i = 0; i < n; ++i) {
       const Law& law = mm.laws[i];
-      const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : xx[layout.kappa[i]] / scale;
-      const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : xx[layout.kappa[i + 1]] / scale;
+      const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : xx[layout.kappa_start[i]] / scale;
+      const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : xx[layout.kappa_end[i]] / scale;
       chain.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
       start = chain.back().end();
-      theta = chain.back().theta(chain.back().length());
+      const int turn = layout.corner_turn[i + 1];
+      theta = chain.back().theta(chain.back().length()) + (turn >= 0 ? xx[turn] : 0.0);
     }
     return chain;
   };
   // The constraints on that exact chain (normalized units), closed by Newton steps on
   // its exact values with the model's Jacobian: the model is only within ~1e-6 of a
   // segment's length of the exact chain, so closing the model would not close it.
-  auto exactConstraints = [&](const std::vector<LaSegment>& chain) {
+  auto exactConstraints = [&](const std::vector<LaSegment>& chain, const Eigen::VectorXd& xx) {
     const Vec2 end = (chain.back().end() - origin) / scale;
     Eigen::VectorXd value(layout.constraints());
-    if (layout.closed) {
+    if (layout.closed && layout.seam_corner) {
+      value << end - (chain.front().start() - origin) / scale;
+    } else if (layout.closed) {
       double turning = 0.0;
       for (const LaSegment& seg : chain) turning += seg.turning();
+      for (int turn : layout.corner_turn)
+        if (turn >= 0) turning += xx[turn];
       value << end - (chain.front().start() - origin) / scale, turning - layout.total_turning;
     } else if (layout.fix_end) {
       value << end - layout.end_point;
@@ -1006,13 +1111,13 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   bool closed_exactly = false;  // the model moved: its residuals are evaluated again
   try {
     fitted = build(model, x);
-    exact = exactConstraints(fitted);
+    exact = exactConstraints(fitted, x);
     for (int k = 0; k < kRestoreSteps && exact.size() > 0 && exact.norm() > kExactlyClosed; ++k) {
       const Eigen::VectorXd moved = movedOntoConstraints(layout, x, constraintJacobian(layout, model), exact);
       ChainModel trial;
       if (!moved.allFinite() || !buildModel(layout, moved, true, trial)) break;
       std::vector<LaSegment> closer = build(trial, moved);
-      const Eigen::VectorXd closer_exact = exactConstraints(closer);
+      const Eigen::VectorXd closer_exact = exactConstraints(closer, moved);
       if (!(closer_exact.norm() < exact.norm())) break;
       x = moved;
       std::swap(model, trial);
@@ -1049,11 +1154,19 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     feet.back() = used_feet.back();
     result.distance.resize(m);
     for (std::size_t k = 0; k < m; ++k) {
+      const FootRange* range = ranges.empty() ? nullptr : &ranges[k];
       const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
-      const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps);
+      const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps, range);
       result.distance[k] = (f.point - points[k]).norm();
+      if (!range || !range->pinned) continue;
+      // A corner's point: its distance from the nearer side (the fit held it at the corner).
+      for (const FootRange* side : {&ranges[(k + m - 1) % m], &ranges[(k + 1) % m]}) {
+        ChainFoot foot = side == &ranges[(k + 1) % m] ? ChainFoot{range->first, 0.0} : ChainFoot{side->last, 1.0};
+        const double d = (projectFoot(model, points[k], foot, kFinalFootSteps, side).point - points[k]).norm();
+        if (d < result.distance[k]) result.distance[k] = d, feet[k] = foot;
+      }
     }
-    refineOutlyingFeet(model, points, feet, result.distance, !options.closed);
+    refineOutlyingFeet(model, points, feet, result.distance, !options.closed, ranges);
     for (double& d : result.distance) d *= scale;
     result.segments = std::move(fitted);
     result.feet = std::move(feet);

@@ -32,6 +32,15 @@
 // met on the exact chain (LaSegment positions) to rounding where a few Newton steps get
 // there; snapToJoints (below) closes what is left.
 //
+// Corners (ChainFitOptions::corners, for a stroke drawn with sharp corners, fitted as one
+// chain so that the fit places the corners): at a corner joint the tangent turns by an
+// unknown angle and each side has its own curvature, so only the position is
+// continuous. Each point's foot stays on the segments of its own part (the points
+// between two corners' points, on the segments between the two corners), so a point
+// beside a hairpin corner is not claimed by the other side; a corner's own point is held
+// at the corner, its residual the distance itself (so is any point whose foot ends at a
+// corner: it has no normal foot there).
+//
 // Evaluation. theta(u) and kappa(u) of a segment have closed forms (written with
 // expm1/log1p so that alpha = 0, alpha = 1 and the circle are ordinary points),
 // differentiated by Ceres' Jet (forward mode) on a coarser panel grid. Positions come
@@ -61,11 +70,21 @@ struct ChainFoot {
   double u = 0.0;
 };
 
+/// A corner of a chain: the start of segment `joint`, drawn at point `point`.
+struct ChainCorner {
+  std::size_t joint = 0, point = 0;
+};
+
 struct ChainFitOptions {
   double min_alpha = -3.0, max_alpha = 3.0;
   bool closed = false;      // the chain is closed: its end returns to its start, G2
   bool fix_start = false;   // the chain starts at the first point (a corner) and stays there
   bool fix_end = false;     // the chain ends at the last point (a corner) and stays there
+  /// Corners, in order along the chain: the chain is continuous there in position only,
+  /// the tangent turns by a free angle and each side has its own curvature; where the
+  /// corner lands is fitted. The points between two corners are those of the segments
+  /// between them. A closed chain with corners has its first at its seam (joint and point 0).
+  std::vector<ChainCorner> corners;
   int max_iterations = 30;  // Levenberg-Marquardt steps
   /// Stop when a step lowers the cost by less than this fraction.
   double relative_decrease = 1e-7;

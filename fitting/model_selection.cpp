@@ -8,10 +8,13 @@
 namespace la {
 namespace {
 
-// A segment as the edits see it: its law and its signed turning. A chain is rebuilt from
-// its start pose and these (LaSegment positions), so an edit changes only what it names.
+// A segment as the edits see it: its law, its signed turning and, where it starts at a
+// corner, the tangent's turn there (NaN elsewhere). A chain is rebuilt from its start pose
+// and these (LaSegment positions), so an edit changes only what it names.
 struct Piece {
   double alpha, kappa0, kappa1, turning;
+  double corner_turn = NAN;
+  bool atCorner() const { return !std::isnan(corner_turn); }
 };
 
 // Alpha for a segment that gets a zero-curvature end (DESIGN.md section 2: alpha < 0).
@@ -24,10 +27,22 @@ constexpr double kSplitMargin = 0.15;
 // A split is kept if it brings the worst point within the tolerance or this factor closer.
 constexpr double kMarkedGain = 0.99;
 
-std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain) {
+std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners) {
   std::vector<Piece> out;
   for (const LaSegment& s : chain)
     out.push_back({std::isfinite(s.alpha()) ? s.alpha() : kZeroEndAlpha, s.kappaStart(), s.kappaEnd(), s.turning()});
+  for (const ChainCorner& c : corners) {
+    const LaSegment& before = chain[(c.joint + chain.size() - 1) % chain.size()];
+    out[c.joint].corner_turn = c.joint == 0 ? 0.0 : wrapAngle(chain[c.joint].theta0() - before.theta(before.length()));
+  }
+  return out;
+}
+
+// The corners of `pieces` (in order, as `corners` had them, at the pieces now starting there).
+std::vector<ChainCorner> cornersOf(const std::vector<Piece>& pieces, const std::vector<ChainCorner>& corners) {
+  std::vector<ChainCorner> out;
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (pieces[i].atCorner()) out.push_back({i, corners[out.size()].point});
   return out;
 }
 
@@ -43,7 +58,9 @@ void fixZeroEnd(Piece& p) {
 std::optional<std::vector<LaSegment>> rebuild(Vec2 start, double theta, const std::vector<Piece>& pieces) {
   std::vector<LaSegment> chain;
   try {
-    for (const Piece& p : pieces) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const Piece& p = pieces[i];
+      if (i > 0 && p.atCorner()) theta += p.corner_turn;
       chain.push_back(LaSegment::withTurning(p.alpha, p.turning, start, theta, p.kappa0, p.kappa1));
       start = chain.back().end();
       theta = chain.back().theta(chain.back().length());
@@ -62,13 +79,20 @@ struct Edit {
   std::vector<ChainFoot> feet;
 };
 
+// The chain as it is, to be edited.
+Edit unedited(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+              const std::vector<ChainCorner>& corners) {
+  return {piecesOf(chain, corners), chain.front().start(), chain.front().theta0(), feet};
+}
+
 // Cuts segment i at fraction u (its two parts: the same law).
-Edit split(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet, std::size_t i, double u) {
-  Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
+Edit split(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+           const std::vector<ChainCorner>& corners, std::size_t i, double u) {
+  Edit e = unedited(chain, feet, corners);
   const LaSegment& s = chain[i];
   const double at = u * s.length(), kappa = s.kappa(at), turn = s.theta(at) - s.theta0();
   const Piece old = e.pieces[i];
-  e.pieces[i] = {old.alpha, old.kappa0, kappa, turn};
+  e.pieces[i] = {old.alpha, old.kappa0, kappa, turn, old.corner_turn};
   e.pieces.insert(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1, Piece{old.alpha, kappa, old.kappa1, old.turning - turn});
   for (ChainFoot& f : e.feet) {
     if (f.segment > i) ++f.segment;
@@ -79,15 +103,16 @@ Edit split(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& fe
 }
 
 // Merges the segments before and after joint j (1 <= j < n; a closed chain's joint 0 is
-// not merged, its seam stays). Nullopt if they cannot be one LA segment.
-std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet, std::size_t j,
-                          double max_turning) {
-  Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
+// not merged, its seam stays, nor is a corner). Nullopt if they cannot be one LA segment.
+std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+                          const std::vector<ChainCorner>& corners, std::size_t j, double max_turning) {
+  Edit e = unedited(chain, feet, corners);
   const Piece a = e.pieces[j - 1], b = e.pieces[j];
+  if (b.atCorner()) return std::nullopt;
   if (signOf(a) != signOf(b) || a.kappa1 == 0.0) return std::nullopt;  // an inflection: no single law
   if (std::abs(a.turning + b.turning) > max_turning) return std::nullopt;
   const double la = chain[j - 1].length(), lb = chain[j].length();
-  e.pieces[j - 1] = {(la * a.alpha + lb * b.alpha) / (la + lb), a.kappa0, b.kappa1, a.turning + b.turning};
+  e.pieces[j - 1] = {(la * a.alpha + lb * b.alpha) / (la + lb), a.kappa0, b.kappa1, a.turning + b.turning, a.corner_turn};
   fixZeroEnd(e.pieces[j - 1]);
   e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(j));
   for (ChainFoot& f : e.feet) {
@@ -100,12 +125,15 @@ std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector
 
 // Removes segment i: its neighbours meet at one joint, an inflection if they turn
 // opposite ways, else a curvature extremum; at an open end its neighbour reaches the end.
-std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet, std::size_t i,
-                             bool closed) {
+// A segment beside a corner stays.
+std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+                             const std::vector<ChainCorner>& corners, std::size_t i, bool closed) {
   const std::size_t n = chain.size();
   if (n < (closed ? 4u : 2u)) return std::nullopt;
-  Edit e{piecesOf(chain), chain.front().start(), chain.front().theta0(), feet};
+  Edit e = unedited(chain, feet, corners);
   const Piece gone = e.pieces[i];
+  if (gone.atCorner() || (i + 1 < n && e.pieces[i + 1].atCorner()) || (i + 1 == n && closed && e.pieces[0].atCorner()))
+    return std::nullopt;
   if (!closed && (i == 0 || i + 1 == n)) {
     // An end sliver: the neighbour takes its place up to the stroke's end.
     Piece& p = e.pieces[i == 0 ? 1 : n - 2];
@@ -149,10 +177,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
   // stopped, for `patience` times as many steps: a long chain far from its start needs
   // them, and only such a chain pays for them.
-  auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet) {
-    ChainFitResult r = fitChain(start, points, start_feet, options.fit);
+  // (an edit renumbers the corners' joints: each fit names the corners of its chain)
+  auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet,
+                 const std::vector<ChainCorner>& corners) {
+    ChainFitOptions o = options.fit;
+    o.corners = corners;
+    ChainFitResult r = fitChain(start, points, start_feet, o);
     if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance) return r;
-    ChainFitOptions longer = options.fit;
+    ChainFitOptions longer = o;
     longer.max_iterations *= options.patience;
     ChainFitResult more = fitChain(r.segments, points, r.feet, longer);
     if (!more.improved) return r;
@@ -160,16 +192,26 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     return more;
   };
   SelectionResult out;
-  out.fit = fit(chain, feet);
+  out.corners = options.fit.corners;
+  out.fit = fit(chain, feet, out.corners);
   const bool closed = options.fit.closed;
   const double n_points = static_cast<double>(points.size());
-  auto attempt = [&](const std::optional<Edit>& e) -> std::optional<ChainFitResult> {
+  struct Attempt {
+    ChainFitResult fit;
+    std::vector<ChainCorner> corners;
+  };
+  auto attempt = [&](const std::optional<Edit>& e) -> std::optional<Attempt> {
     if (!e) return std::nullopt;
     const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
     if (!rebuilt || rebuilt->empty()) return std::nullopt;
-    ChainFitResult r = fit(*rebuilt, e->feet);
+    std::vector<ChainCorner> corners = cornersOf(e->pieces, out.corners);
+    ChainFitResult r = fit(*rebuilt, e->feet, corners);
     if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
-    return r;
+    return Attempt{std::move(r), std::move(corners)};
+  };
+  auto take = [&](Attempt&& a) {
+    out.fit = std::move(a.fit);
+    out.corners = std::move(a.corners);
   };
   int edits = 0;
   // An edit is kept if the refitted chain is within the tolerance (or no further outside
@@ -187,6 +229,9 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       changed = false;
       const std::vector<LaSegment> segs = out.fit.segments;
       const std::size_t n = segs.size();
+      std::vector<bool> corner(n + 1, false);  // (joint n: the end, or a closed chain's seam again)
+      for (const ChainCorner& c : out.corners) corner[c.joint] = true;
+      corner[n] = closed && corner[0];
       struct Candidate {
         double weakness;  // smaller first
         bool collapse;
@@ -194,8 +239,10 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       };
       std::vector<Candidate> candidates;
       for (std::size_t i = 0; i < n; ++i)
-        if (std::abs(segs[i].turning()) < options.sliver_turning) candidates.push_back({std::abs(segs[i].turning()), true, i});
+        if (std::abs(segs[i].turning()) < options.sliver_turning && !corner[i] && !corner[i + 1])
+          candidates.push_back({std::abs(segs[i].turning()), true, i});
       for (std::size_t j = 1; j < n && !slivers_only; ++j) {
+        if (corner[j]) continue;
         const double k0 = std::abs(segs[j - 1].kappaStart()), kj = std::abs(segs[j].kappaStart());
         const double k1 = std::abs(segs[j].kappaEnd());
         if (kj == 0.0) continue;
@@ -207,11 +254,11 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
         if (edits >= options.max_edits) break;
-        const auto r = attempt(c.collapse ? collapse(segs, out.fit.feet, c.index, closed)
-                                          : merge(segs, out.fit.feet, c.index, options.max_turning));
+        auto r = attempt(c.collapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed)
+                                    : merge(segs, out.fit.feet, out.corners, c.index, options.max_turning));
         ++edits;
-        if (!r || !keep(*r)) continue;
-        out.fit = *r;
+        if (!r || !keep(r->fit)) continue;
+        take(std::move(*r));
         ++(c.collapse ? out.collapses : out.merges);
         changed = true;
         break;
@@ -230,6 +277,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         weights[k] *= std::max(1.0, out.fit.distance[k] / options.tolerance);
       ChainFitOptions weighted = options.fit;
       weighted.weights = weights;
+      weighted.corners = out.corners;
       const ChainFitResult r = fitChain(out.fit.segments, points, out.fit.feet, weighted);
       if (!r.improved || !(r.max_distance < out.fit.max_distance)) break;
       out.fit = r;
@@ -243,11 +291,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const std::size_t worst =
         std::max_element(out.fit.distance.begin(), out.fit.distance.end()) - out.fit.distance.begin();
     const ChainFoot at = out.fit.feet[worst];
-    const auto r = attempt(split(out.fit.segments, out.fit.feet, at.segment, std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
+    auto r = attempt(split(out.fit.segments, out.fit.feet, out.corners, at.segment,
+                           std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
     ++edits;
     // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
-    if (!r || !(r->max_distance <= options.tolerance || r->max_distance < kMarkedGain * out.fit.max_distance)) break;
-    out.fit = *r;
+    const double gained = r ? r->fit.max_distance : INFINITY;
+    if (!(gained <= options.tolerance || gained < kMarkedGain * out.fit.max_distance)) break;
+    take(std::move(*r));
     ++out.splits;
   }
   simplify(false);

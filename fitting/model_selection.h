@@ -14,6 +14,9 @@
 //  - merge: two segments whose joint is a weak curvature extremum or none at all (the
 //    curvature passes through it monotonically) become one.
 //
+// A chain with corners (ChainFitOptions::corners) keeps them: no merge across a corner,
+// no collapse of a segment beside one; a split renumbers them (SelectionResult::corners).
+//
 // A collapse or merge is kept when the refitted chain stays within the tolerance and
 // the points do not object: the rise of the sum of squared distances, per unknown
 // removed, is below `significance` times the residual variance (the F-test of nested
@@ -44,6 +47,7 @@ struct SelectionOptions {
 
 struct SelectionResult {
   ChainFitResult fit;  // of the chain finally chosen
+  std::vector<ChainCorner> corners;  // of that chain (options.fit.corners, renumbered by the edits)
   int splits = 0, collapses = 0, merges = 0;
 };
 

@@ -383,5 +383,119 @@ TEST(ChainFit, BinnedPointsFitLikeAllPoints) {
   EXPECT_NEAR(b.ssr, ssr, 1e-6 * ssr);
 }
 
+// Two segments meeting at a sharp corner (the tangent turns by `turn` there), sampled
+// with noise; the corner's own sample is the truth's corner plus noise. Started from a
+// chain whose corner is 2% of the size off (as a part pinned to a misplaced corner
+// sample would be) and whose alphas are off, the fit with the corner free puts the
+// corner back where the sides meet and fits the points as well as the truth does, at a
+// plain corner and at a hairpin (turn near pi, the other side passing close by).
+std::vector<LaSegment> cornerChain(Vec2 start, double theta, double turn, double scale = 1.0) {
+  std::vector<LaSegment> chain = {LaSegment(1.0, 80.0 * scale, start, theta, 0.01 / scale, 0.02 / scale)};
+  const LaSegment& a = chain.back();
+  chain.emplace_back(-1.0, 70.0 * scale, a.end(), a.theta(a.length()) + turn, 0.03 / scale, 0.008 / scale);
+  return chain;
+}
+
+TEST(ChainFit, FitsAFreeCornerWhereTheSidesMeet) {
+  for (const double turn : {1.2, 3.0}) {
+    SCOPED_TRACE("turn " + std::to_string(turn));
+    const std::vector<LaSegment> truth = cornerChain({0, 0}, 0.3, turn);
+    const double sigma = 0.05;
+    const std::vector<Vec2> points = sampleChain(truth, 60, sigma, 17);
+    const std::size_t corner_point = 60;  // (sampleChain: 0..60 on the first, 61.. on the second)
+    std::vector<LaSegment> start = {LaSegment(0.3, 82.0, {0.3, -0.2}, 0.32, 0.011, 0.019)};
+    start.emplace_back(-0.4, 68.0, start[0].end(), start[0].theta(start[0].length()) + turn - 0.05, 0.028, 0.009);
+    ASSERT_GT((start[0].end() - truth[0].end()).norm(), 2.0);
+    ChainFitOptions options;
+    options.corners = {{1, corner_point}};
+    options.max_iterations = 60;
+    const ChainFitResult r = fitChain(start, points, {}, options);
+    ChainFitOptions at_truth_options = options;
+    at_truth_options.max_iterations = 0;
+    const ChainFitResult at_truth = fitChain(truth, points, {}, at_truth_options);
+    ASSERT_TRUE(r.improved) << r.report.message;
+    ASSERT_EQ(r.segments.size(), 2u);
+    EXPECT_LT((r.segments[0].end() - r.segments[1].start()).norm(), 1e-12 * 150.0) << "the corner is one point";
+    EXPECT_LT((r.segments[1].start() - truth[1].start()).norm(), 3.0 * sigma) << "the corner is where the sides meet";
+    EXPECT_NEAR(wrapAngle(r.segments[1].theta0() - r.segments[0].theta(r.segments[0].length())), turn, 0.02);
+    EXPECT_LT(r.ssr, 1.001 * at_truth.ssr);
+    EXPECT_LT(maxDistance(r.segments, points), 5.0 * sigma);
+    EXPECT_NEAR(r.max_distance, maxDistance(r.segments, points), 1e-6);
+    for (std::size_t i = 0; i < 2; ++i)
+      EXPECT_NEAR(r.segments[i].alpha(), truth[i].alpha(), std::max(0.3, 3.0 * r.alpha_standard_error[i])) << "segment " << i;
+  }
+}
+
+// A closed chain whose seam is a corner: a lens of two segments, the second the first
+// turned half a turn about the middle of its chord, so it closes exactly with a corner
+// at either end. Fitted from a wrong start with both corners free, it comes back closed
+// in position (not in tangent: the seam is a corner) and on the points. (Each side's
+// points keep their feet on their side: with feet free to cross the seam, the fit
+// misplaces both corners.)
+TEST(ChainFit, ClosedChainWithCornersClosesInPosition) {
+  const LaSegment a(1.5, 120.0, {0, 0}, 0.6, 0.004, 0.016);
+  const LaSegment b(1.5, 120.0, a.end(), 0.6 + std::numbers::pi, 0.004, 0.016);
+  ASSERT_LT((b.end() - a.start()).norm(), 1e-9 * 120.0);
+  const std::vector<LaSegment> truth = {a, b};
+  const double sigma = 0.05;
+  const std::vector<Vec2> points = sampleChain(truth, 80, sigma, 23, true);
+  std::vector<LaSegment> start = {LaSegment(1.0, 118.0, {0.5, 0.4}, 0.62, 0.0042, 0.015)};
+  start.emplace_back(2.0, 121.0, start[0].end(), 0.58 + std::numbers::pi, 0.0038, 0.017);
+  ChainFitOptions options;
+  options.closed = true;
+  options.corners = {{0, 0}, {1, 80}};
+  options.max_iterations = 60;
+  const ChainFitResult r = fitChain(start, points, {}, options);
+  ASSERT_TRUE(r.improved) << r.report.message;
+  ASSERT_EQ(r.segments.size(), 2u);
+  EXPECT_LT((r.segments[1].end() - r.segments[0].start()).norm(), 1e-9 * 240.0);
+  EXPECT_LT((r.segments[0].start() - a.start()).norm(), 3.0 * sigma);
+  EXPECT_LT((r.segments[1].start() - b.start()).norm(), 3.0 * sigma);
+  EXPECT_LT(maxDistance(r.segments, points), 5.0 * sigma);
+  for (const LaSegment& s : r.segments) EXPECT_NEAR(s.alpha(), 1.5, 0.3);
+}
+
+// The fit's result does not depend on where the corner chain is or on its scale.
+TEST(ChainFit, CornerFitInvariantUnderSimilarity) {
+  const std::vector<LaSegment> truth = cornerChain({0, 0}, 0.3, 2.0);
+  const std::vector<Vec2> points = sampleChain(truth, 50, 0.1, 29);
+  const double angle = -1.3, scale = 0.02;
+  const Vec2 shift(4000.0, -70.0);
+  const Eigen::Rotation2Dd rot(angle);
+  std::vector<Vec2> moved_points;
+  for (const Vec2& p : points) moved_points.push_back(scale * (rot * p) + shift);
+  const std::vector<LaSegment> start = cornerChain({0.4, 0.2}, 0.33, 1.9);
+  const std::vector<LaSegment> moved_start = cornerChain(scale * (rot * Vec2(0.4, 0.2)) + shift, 0.33 + angle, 1.9, scale);
+  ChainFitOptions options;
+  options.corners = {{1, 50}};
+  options.relative_decrease = 1e-13;  // to the optimum, as far as the steps resolve it
+  const ChainFitResult a = fitChain(start, points, {}, options), b = fitChain(moved_start, moved_points, {}, options);
+  ASSERT_TRUE(a.improved && b.improved);
+  // (the two runs stop within 1e-6 of each other's sum of squares, where the alphas
+  // differ by 7e-5 and the corners by 7e-7 of the size)
+  EXPECT_NEAR(a.ssr * scale * scale, b.ssr, 1e-6 * b.ssr);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(a.segments[i].alpha(), b.segments[i].alpha(), 1e-3) << "segment " << i;
+    EXPECT_LT((scale * (rot * a.segments[i].end()) + shift - b.segments[i].end()).norm(), 1e-5 * 150.0 * scale) << "segment " << i;
+  }
+}
+
+// Corners it cannot take: out of order, at an open chain's start, or a closed chain's
+// first corner not at its seam.
+TEST(ChainFit, RefusesMisplacedCorners) {
+  const std::vector<LaSegment> chain = cornerChain({0, 0}, 0.3, 1.2);
+  const std::vector<Vec2> points = sampleChain(chain, 30, 0.0, 1);
+  for (const std::vector<ChainCorner>& corners : {std::vector<ChainCorner>{{0, 0}}, std::vector<ChainCorner>{{1, 0}},
+                                                 std::vector<ChainCorner>{{2, 30}}, std::vector<ChainCorner>{{1, 60}}}) {
+    ChainFitOptions options;
+    options.corners = corners;
+    EXPECT_EQ(fitChain(chain, points, {}, options).report.status, SolveStatus::kBadInput);
+  }
+  ChainFitOptions closed;
+  closed.closed = true;
+  closed.corners = {{1, 30}};
+  EXPECT_EQ(fitChain(chain, points, {}, closed).report.status, SolveStatus::kBadInput);
+}
+
 }  // namespace
 }  // namespace la

@@ -721,6 +721,39 @@ TEST(PipelineGaps, FollowsAnOutlinesUnsampledStraightEdge) {
                                 << describeFit(r);
 }
 
+// A caret drawn fast: two bowed arms meeting at a corner that falls between samples
+// (about 4.7 units apart, the nearest 1.3 to 2 units from the corner, more than the
+// tolerance), with noise of 0.1% of the diagonal. Stage 7 fits both arms as one chain
+// with the corner free, so the corner lands nearer the true corner than any sample
+// (the corner's own sample would otherwise pin it), within the tolerance.
+TEST(PipelineCorners, CornerBetweenSamplesLandsWhereTheArmsMeet) {
+  const Vec2 corner(100.0, 120.0);
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.23);
+    std::vector<Vec2> points;
+    constexpr int kPerArm = 40;
+    for (int k = 0; k < kPerArm; ++k) {
+      const double t = (k + 0.5) / kPerArm;
+      points.push_back(Vec2(100.0 * t, 160.0 * t - 40.0 * t * t) + Vec2(noise(rng), noise(rng)));
+    }
+    for (int k = 0; k < kPerArm; ++k) {
+      const double t = (k + 0.5) / kPerArm;
+      points.push_back(corner + Vec2(100.0 * t, -160.0 * t + 40.0 * t * t) + Vec2(noise(rng), noise(rng)));
+    }
+    const FitResult r = fit(points);
+    ASSERT_EQ(r.quality.corners, 1) << describeFit(r);
+    EXPECT_LE(r.quality.max_dev, r.tolerance) << describeFit(r);
+    expectGaps(r);
+    EXPECT_LT(r.quality.g0_gap, 1e-9);
+    double nearest_sample = INFINITY;
+    for (const Vec2& p : points) nearest_sample = std::min(nearest_sample, (p - corner).norm());
+    for (const CurvePiece& piece : r.curve.pieces)
+      if (piece.corner) EXPECT_LT((piece.segment.start() - corner).norm(), nearest_sample) << describeFit(r);
+  }
+}
+
 std::string caseParamName(const ::testing::TestParamInfo<CaseParam>& info) {
   const auto [index, transform] = info.param;
   return caseName(index, transform);
