@@ -365,25 +365,27 @@ struct ChainGeometry {
   }
 };
 
-// The segments a point's foot may be on. With corners, those of the point's own part
-// (between the corners around it), and a corner's own point sits on the corner
-// (`pinned`, at the start of segment `first`).
+// The segments a point's foot may be on, from `first` to `last` along the chain
+// (through a closed chain's seam where first > last). With corners, those of the
+// point's own part (between the corners around it); a corner's own point may be on
+// either side of it, or is held at the corner (at the start of segment `held`).
 struct FootRange {
   std::size_t first = 0, last = SIZE_MAX;
-  bool pinned = false;
+  bool corner = false;  // a corner's own point
+  std::size_t held = SIZE_MAX;
+  bool holds(std::size_t i) const { return first <= last ? i >= first && i <= last : i >= first || i <= last; }
 };
 
 // Newton steps on the closest-point condition t . (X - P(s)) = 0, s the arc length
 // along the chain, crossing joints (and a closed chain's seam) as needed, within
 // `range` if given (its ends stop the foot as the chain's do); returns the frame at the
-// final foot.
+// final foot. A step reaching a corner stops there.
 FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot, int steps,
                       const FootRange* range = nullptr) {
   const std::size_t n = g.size();
   const std::size_t first = range ? range->first : 0, last = range ? std::min(range->last, n - 1) : n - 1;
-  const bool wraps = g.closed && !range;
-  if (foot.segment < first) foot = {first, 0.0};
-  if (foot.segment > last) foot = {last, 1.0};
+  const bool wraps = g.closed && (!range || first > last);
+  if (range && !range->holds(foot.segment)) foot = {first, 0.0};
   FootFrame f = g.frame(foot);
   for (int step = 0; step < steps; ++step) {
     const Vec2 d = point - f.point;
@@ -391,24 +393,40 @@ FootFrame projectFoot(const ChainGeometry& g, const Vec2& point, ChainFoot& foot
     double s = foot.u * g.length(foot.segment) + ds;
     std::size_t i = foot.segment;
     for (std::size_t guard = 0; guard <= n && s > g.length(i); ++guard) {
-      if (i < last || wraps) {
-        s -= g.length(i);
-        i = (i + 1) % n;
-      } else {
+      const std::size_t next = (i + 1) % n;
+      if (i == last || (next == 0 && !wraps)) {
         s = g.length(i);
+      } else if (g.cornerAtStart(next)) {
+        // (on along the other side only if the point is ahead along it: else the corner
+        // is the nearest point)
+        const FootFrame other = g.frame({next, 0.0});
+        if (other.tangent.dot(point - other.point) > 0.0) i = next, s = 0.0;
+        else s = g.length(i);
+        break;
+      } else {
+        s -= g.length(i);
+        i = next;
       }
     }
     for (std::size_t guard = 0; guard <= n && s < 0.0; ++guard) {
-      if (i > first || wraps) {
-        i = (i + n - 1) % n;
-        s += g.length(i);
-      } else {
+      const std::size_t before = (i + n - 1) % n;
+      if (i == first || (i == 0 && !wraps)) {
         s = 0.0;
+      } else if (g.cornerAtStart(i)) {
+        const FootFrame other = g.frame({before, 1.0});
+        if (other.tangent.dot(point - other.point) < 0.0) i = before, s = g.length(before);
+        else s = 0.0;
+        break;
+      } else {
+        i = before;
+        s += g.length(i);
       }
     }
-    foot = {i, std::clamp(s / g.length(i), 0.0, 1.0)};
+    const ChainFoot moved{i, std::clamp(s / g.length(i), 0.0, 1.0)};
+    const bool stuck = moved.segment == foot.segment && moved.u == foot.u;  // (at a corner)
+    foot = moved;
     f = g.frame(foot);
-    if (std::abs(ds) < 1e-13 * g.total_length) break;
+    if (stuck || std::abs(ds) < 1e-13 * g.total_length) break;
   }
   return f;
 }
@@ -427,7 +445,7 @@ std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2
     const FootRange range = ranges.empty() ? FootRange{} : ranges[k];
     double best = INFINITY;
     for (const auto& [p, f] : nodes)
-      if (const double d = (p - points[k]).squaredNorm(); d < best && f.segment >= range.first && f.segment <= range.last)
+      if (const double d = (p - points[k]).squaredNorm(); d < best && range.holds(f.segment))
         best = d, feet[k] = f;
   }
   return feet;
@@ -437,8 +455,8 @@ std::vector<ChainFoot> coarseFeet(const ChainGeometry& g, const std::vector<Vec2
 // root mean square), found again from the nearest coarse node: a foot carried over from
 // an edited chain or a rough start can sit on a far part of the chain, where Newton
 // settles on a local closest point. `distance` (of the points at their feet) is updated.
-// With `pinned_ends`, the first and last points keep theirs (an open chain's ends); a
-// pinned range's point keeps its foot too, and each stays within its range.
+// With `pinned_ends`, the first and last points keep theirs (an open chain's ends); with
+// `ranges`, each foot stays within its point's range.
 void refineOutlyingFeet(const ChainGeometry& g, const std::vector<Vec2>& points, std::vector<ChainFoot>& feet,
                         std::vector<double>& distance, bool pinned_ends = false,
                         const std::vector<FootRange>& ranges = {}) {
@@ -449,7 +467,7 @@ void refineOutlyingFeet(const ChainGeometry& g, const std::vector<Vec2>& points,
   std::vector<std::size_t> which;
   std::vector<FootRange> far_ranges;
   for (std::size_t k = pinned_ends ? 1 : 0; k + (pinned_ends ? 1 : 0) < points.size(); ++k)
-    if (distance[k] > limit && (ranges.empty() || !ranges[k].pinned)) {
+    if (distance[k] > limit) {
       far.push_back(points[k]);
       which.push_back(k);
       if (!ranges.empty()) far_ranges.push_back(ranges[k]);
@@ -629,8 +647,9 @@ class ChainProblem {
     }
     for (std::size_t k = 0; k < n_points; ++k) {
       const FootRange* range = ranges_.empty() ? nullptr : &ranges_[k];
-      if (range && range->pinned) feet[k] = {range->first, 0.0};
-      const bool pinned = (!layout_.closed && (k == 0 || k + 1 == n_points)) || (range && range->pinned);
+      const bool held = range && range->held != SIZE_MAX;
+      if (held) feet[k] = {range->held, 0.0};
+      const bool pinned = (!layout_.closed && (k == 0 || k + 1 == n_points)) || held;
       frames[k] = pinned || !project ? m.frame(feet[k]) : projectFoot(m, points_[k], feet[k], kFootSteps, range);
     }
     r.resize(static_cast<Eigen::Index>(rows()));
@@ -920,8 +939,11 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     corner[c.joint] = true;
     if (first) ranges.assign(m, FootRange{0, c.joint - 1});  // (open: the points before it)
     const std::size_t next_joint = a + 1 < options.corners.size() ? options.corners[a + 1].joint : n;
-    ranges[c.point] = {c.joint, c.joint, true};
     for (std::size_t k = c.point + 1; k < m; ++k) ranges[k] = {c.joint, next_joint - 1};
+  }
+  for (const ChainCorner& c : options.corners) {  // (a closed chain's seam: its last part and its first)
+    const std::size_t before = c.point > 0 ? c.point - 1 : m - 1, after = c.point + 1;
+    ranges[c.point] = {ranges[before].first, ranges[after].last, true, options.hold_corner_points ? ranges[after].first : SIZE_MAX};
   }
   layout.seam_corner = options.closed && corner[0];
   // Curvature values: one per smooth joint (the geometric mean of the two sides where a
@@ -974,12 +996,13 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     layout.turn_sign.push_back((zero0 ? kappa[at_end[i]] : kappa[at_start[i]]) < 0.0 ? -1.0 : 1.0);
     const double log_turning = std::log(std::abs(initial[i].turning()));
     layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
-    const double lo = options.min_alpha;
     const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
-    // (the cap is lifted to a steeper start's alpha: clamping it would change the chain
-    // before the fit, as a raised curvature floor would, see above)
+    // (the bounds and the cap are widened to a start's alpha beyond them: clamping it
+    // would change the chain before the fit, as a raised curvature floor would, see
+    // above; stage 4 gives inflection pieces alphas below -3)
+    const double lo = std::min(options.min_alpha, a);
     const double cap = std::max(kInflectionAlphaCap, std::min(a, 0.0));
-    const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : options.max_alpha;
+    const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : std::max(options.max_alpha, a);
     layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
     turning += initial[i].turning();
     if (i + 1 < n && corner[i + 1]) {
@@ -1035,13 +1058,13 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   for (std::size_t j = 0; j < used_count; ++j) {
     const std::size_t k = pick[j], from = bin[j], to = bin[j + 1];
     const FootRange* range = ranges.empty() ? nullptr : &ranges[k];
-    ChainFoot foot = range && range->pinned ? ChainFoot{range->first, 0.0} : feet[k];
+    ChainFoot foot = feet[k];
     // the given feet may be rough (from the spline's parameters, or an edited chain's)
-    const FootFrame f = range && range->pinned ? model.frame(foot) : projectFoot(model, points[k], foot, kFirstFootSteps, range);
+    const FootFrame f = projectFoot(model, points[k], foot, kFirstFootSteps, range);
     const double sagitta = std::abs(f.kappa) * (points[to - 1] - points[from]).squaredNorm() / 8.0;
     Vec2 point = points[k];
     double w2 = weight2(k), distance = (f.point - point).norm();
-    if (to - from > 1 && sagitta <= kBinBias * noise && !(range && range->pinned)) {
+    if (to - from > 1 && sagitta <= kBinBias * noise && !(range && range->corner)) {
       point = Vec2::Zero(), w2 = 0.0;
       for (std::size_t i = from; i < to; ++i) point += weight2(i) * points[i], w2 += weight2(i);
       point = w2 > 0.0 ? Vec2(point / w2) : points[k];
@@ -1158,13 +1181,6 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
       const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
       const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps, range);
       result.distance[k] = (f.point - points[k]).norm();
-      if (!range || !range->pinned) continue;
-      // A corner's point: its distance from the nearer side (the fit held it at the corner).
-      for (const FootRange* side : {&ranges[(k + m - 1) % m], &ranges[(k + 1) % m]}) {
-        ChainFoot foot = side == &ranges[(k + 1) % m] ? ChainFoot{range->first, 0.0} : ChainFoot{side->last, 1.0};
-        const double d = (projectFoot(model, points[k], foot, kFinalFootSteps, side).point - points[k]).norm();
-        if (d < result.distance[k]) result.distance[k] = d, feet[k] = foot;
-      }
     }
     refineOutlyingFeet(model, points, feet, result.distance, !options.closed, ranges);
     for (double& d : result.distance) d *= scale;

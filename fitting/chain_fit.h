@@ -85,6 +85,10 @@ struct ChainFitOptions {
   /// corner lands is fitted. The points between two corners are those of the segments
   /// between them. A closed chain with corners has its first at its seam (joint and point 0).
   std::vector<ChainCorner> corners;
+  /// Each corner's own point is held at the corner (its residual: the distance between
+  /// them), instead of lying on either side like any point. A drawn corner is rounded and
+  /// its point is the tip of the rounding: held there, the corner stays near the stroke.
+  bool hold_corner_points = false;
   int max_iterations = 30;  // Levenberg-Marquardt steps
   /// Stop when a step lowers the cost by less than this fraction.
   double relative_decrease = 1e-7;

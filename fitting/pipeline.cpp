@@ -69,6 +69,8 @@ constexpr double kStrayWarning = 2.0;
 // A part's curve is measured for straying (fitStroke's alternative starts) where it is
 // longer than the part's polyline by this factor.
 constexpr double kStrayLength = 1.02;
+// Turning (radians) of the arc a straight part enters the fit across corners as.
+constexpr double kFlatTurning = 1e-6;
 // A closed part keeps at least this many pieces (each turns less than pi).
 constexpr std::size_t kMinClosedPieces = 3;
 // Resolution of the deviations that decide those splits (relative to the diagonal;
@@ -972,17 +974,21 @@ void polishPart(PartFit& fit, const Part& part, double tol, double noise, double
 
 // How far a part's chain goes from the part's polyline (strayFromPoints), measured only
 // where the chain is longer than the polyline (kStrayLength; else 0): a loop adds
-// length, noise only to the polyline, and the measure costs a grid of the points.
-double strayOf(const std::vector<LaSegment>& segments, const Part& part, double diag) {
+// length, noise only to the polyline, and the measure costs a grid of the points. With
+// `tip_allowance` (world units), measured always, and counted where above it: a sharp
+// corner running past the rounded tip of a drawn corner adds almost no length.
+double strayOf(const std::vector<LaSegment>& segments, const Part& part, double diag, double tip_allowance = INFINITY) {
   double curve_length = 0.0, stroke_length = 0.0;
   for (const LaSegment& s : segments) curve_length += s.length();
   for (std::size_t i = 1; i < part.points.size(); ++i) stroke_length += (part.points[i] - part.points[i - 1]).norm();
   if (part.closed) stroke_length += (part.points.front() - part.points.back()).norm();
-  if (!(curve_length > kStrayLength * stroke_length)) return 0.0;
+  const bool longer = curve_length > kStrayLength * stroke_length;
+  if (!longer && tip_allowance == INFINITY) return 0.0;
   Curve c;
   c.closed = part.closed;
   for (const LaSegment& s : segments) c.pieces.push_back({s, false});
-  return strayFromPoints(c, part.points, diag);
+  const double stray = strayFromPoints(c, part.points, diag);
+  return longer || stray > tip_allowance ? stray : 0.0;
 }
 
 // Makes the parts' chains meet at their corners. Stage 7 pins a part's ends to its
@@ -1022,15 +1028,27 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
   }
 }
 
+// A straight part's line as the chain fit takes it (it fits no straight segment): a
+// circular arc turning by kFlatTurning towards the side its points are on.
+LaSegment bentLine(const LaSegment& line, const std::vector<Vec2>& points) {
+  double side = 0.0;
+  for (const Vec2& p : points) side += cross(line.tangent(0.0), p - line.start());
+  const double turning = std::copysign(kFlatTurning, side);
+  return LaSegment::arc(line.length(), line.start(), line.theta0() - 0.5 * turning, turning / line.length());
+}
+
 // Stage 7 across corners. Each part's chain was fitted with its ends pinned to the
-// corner samples, but a drawn corner is rounded and sparsely sampled: the sample is
-// seldom where the two sides' curves would meet, and the sides bend to reach it (of the
-// shared strokes, 25 of 227 missed the tolerance so, 10 do now). This fits all the
-// parts' chains as one chain whose corners are free (fitChain's corners: position
-// continuous, tangent and curvature free), so the fit places each corner; where the
-// curve misses, with the segments chosen again (selectChain). Kept where it brings the
-// curve closer to the points, counting the stray, or keeps it within the tolerance. True
-// if it changed the chains; false where a part is straight or has no G2 chain.
+// corner samples, but a corner falls between samples, and a drawn one is rounded: the
+// sample is seldom where the two sides' curves meet, and the sides bend to reach it.
+// This fits all the parts' chains as one chain whose corners are free (fitChain's
+// corners: position continuous, tangent and curvature free), so the fit places each
+// corner where the sides meet; where that misses the tolerance, also with each corner's
+// point held at the corner (the tip of a rounded corner), the better kept. Where the
+// curve misses, the segments are chosen again too (selectChain). A straight part enters
+// as a nearly straight arc and leaves as the line between its new ends (unless the
+// selection split it). Kept where it brings the curve closer to the points, counting the
+// stray, or keeps it within the tolerance. True if it changed the chains; false where a
+// part has no G2 chain.
 bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed, double tol,
                       double noise, double diag, const FitOptions& options) {
   const std::size_t n = parts.size();
@@ -1041,15 +1059,17 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   so.tolerance = (1.0 - kSelectionMargin) * tol;
   ChainFitOptions& co = so.fit;
   std::vector<std::size_t> first_point;
+  // the larger of the deviation and the stray (at a corner's tip: beyond the warning's)
   double before = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     PartFit& fit = fits[k];
-    if (!fit.spline || !fit.g2.usable() || fit.segments.empty()) return false;
+    if (!fit.g2.usable() || fit.segments.empty()) return false;
     if (std::isnan(fit.max_dev)) fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
-    if (std::isnan(fit.stray)) fit.stray = strayOf(fit.segments, parts[k], diag);
+    fit.stray = strayOf(fit.segments, parts[k], diag, kStrayWarning * tol);
     first_point.push_back(points.empty() ? 0 : points.size() - 1);  // (the corner is both parts')
     if (parts[k].starts_at_corner) co.corners.push_back({chain.size(), first_point.back()});
-    chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
+    if (fit.spline) chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
+    else chain.push_back(bentLine(fit.segments.front(), parts[k].points));
     points.insert(points.end(), parts[k].points.begin() + (points.empty() ? 0 : 1), parts[k].points.end());
     before = std::max({before, fit.max_dev, fit.stray});
   }
@@ -1060,48 +1080,72 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   co.max_points = kFitPoints * n;
   co.max_iterations = kFitIterations;
   co.noise = noise;
-  // (the segments are chosen again only where the curve misses: else one fit)
-  SelectionResult selected;
-  if (before > tol) {
-    selected = selectChain(chain, points, {}, so);
-  } else {
-    selected.fit = fitChain(chain, points, {}, co);
-    selected.corners = co.corners;
-  }
-  const ChainFitResult& joint = selected.fit;
-  // part k's segments: from its corner (the edits may have added or removed some)
-  std::vector<std::size_t> first_segment = {0};
-  for (const ChainCorner& c : selected.corners)
-    if (c.joint > 0) first_segment.push_back(c.joint);
-  first_segment.push_back(joint.segments.size());
-  if (first_segment.size() != n + 1) return false;
-  if (!joint.improved) return false;
-  std::vector<PartFit> out = fits;
-  double after = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    PartFit& fit = out[k];
-    const std::size_t s0 = first_segment[k], count = first_segment[k + 1] - s0;
-    fit.segments.assign(joint.segments.begin() + static_cast<std::ptrdiff_t>(s0),
-                        joint.segments.begin() + static_cast<std::ptrdiff_t>(s0 + count));
-    // The part's points, their feet on its own segments (a foot past the corner: the
-    // part's end there), and their distances.
-    std::vector<ChainFoot> feet;
-    fit.max_dev = 0.0;
-    for (std::size_t i = 0; i < parts[k].points.size(); ++i) {
-      const std::size_t at = (first_point[k] + i) % points.size();
-      const ChainFoot& f = joint.feet[at];
-      feet.push_back(f.segment < s0           ? ChainFoot{0, 0.0}
-                     : f.segment >= s0 + count ? ChainFoot{count - 1, 1.0}
-                                               : ChainFoot{f.segment - s0, f.u});
-      fit.max_dev = std::max(fit.max_dev, joint.distance[at]);
+
+  // The parts' chains from one joint fit, with their largest deviation or stray.
+  auto split = [&](const SelectionResult& selected, std::vector<PartFit>& out) -> double {
+    const ChainFitResult& joint = selected.fit;
+    std::vector<std::size_t> first_segment = {0};  // (the edits may have added or removed some)
+    for (const ChainCorner& c : selected.corners)
+      if (c.joint > 0) first_segment.push_back(c.joint);
+    first_segment.push_back(joint.segments.size());
+    if (!joint.improved || first_segment.size() != n + 1) return INFINITY;
+    out = fits;
+    double worst = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      PartFit& fit = out[k];
+      const std::size_t s0 = first_segment[k], count = first_segment[k + 1] - s0;
+      fit.segments.assign(joint.segments.begin() + static_cast<std::ptrdiff_t>(s0),
+                          joint.segments.begin() + static_cast<std::ptrdiff_t>(s0 + count));
+      // The part's points: their feet on its own segments (past its corner: its end
+      // there) and their distances.
+      std::vector<ChainFoot> feet;
+      fit.max_dev = 0.0;
+      for (std::size_t i = 0; i < parts[k].points.size(); ++i) {
+        const std::size_t at = (first_point[k] + i) % points.size();
+        const ChainFoot& f = joint.feet[at];
+        feet.push_back(f.segment < s0           ? ChainFoot{0, 0.0}
+                       : f.segment >= s0 + count ? ChainFoot{count - 1, 1.0}
+                                                 : ChainFoot{f.segment - s0, f.u});
+        fit.max_dev = std::max(fit.max_dev, joint.distance[at]);
+      }
+      const bool straight = !fit.spline && count == 1;
+      if (straight) {
+        const Vec2 a = fit.segments.front().start(), b = fit.segments.front().end();
+        fit.segments = {LaSegment::arc((b - a).norm(), a, angleOf(b - a), 0.0)};
+        fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
+      }
+      fit.stray = strayOf(fit.segments, parts[k], diag, kStrayWarning * tol);
+      worst = std::max({worst, fit.max_dev, fit.stray});
+      fit.warnings.clear();  // (of the stages whose chain this replaces)
+      fit.g2 = {SolveStatus::kConverged, joint.report.iterations, 0.0, "G2 by construction (stage 7, across corners)"};
+      if (fit.spline) {
+        fit.reports = reportsOf(fit.segments, feet, fit.parameters, *fit.spline, false);
+      } else if (!straight) {  // a straight part the fit bent and split: LA segments, no spline
+        fit.reports.assign(count, fits[k].reports.front());
+        for (std::size_t i = 0; i < count; ++i) fit.reports[i].alpha = fit.segments[i].alpha();
+      }
+      for (std::size_t i = 0; i < count && s0 + i < joint.alpha_standard_error.size(); ++i)
+        fit.reports[i].alpha_standard_error = joint.alpha_standard_error[s0 + i];
     }
-    fit.stray = strayOf(fit.segments, parts[k], diag);
-    after = std::max({after, fit.max_dev, fit.stray});
-    fit.warnings.clear();  // (of the stages whose chain this replaces)
-    fit.g2 = {SolveStatus::kConverged, joint.report.iterations, 0.0, "G2 by construction (stage 7, across corners)"};
-    fit.reports = reportsOf(fit.segments, feet, fit.parameters, *fit.spline, false);
-    for (std::size_t i = 0; i < count && s0 + i < joint.alpha_standard_error.size(); ++i)
-      fit.reports[i].alpha_standard_error = joint.alpha_standard_error[s0 + i];
+    return worst;
+  };
+  // (the segments are chosen again only where the curve misses: else one fit)
+  auto attempt = [&](bool hold, std::vector<PartFit>& out) {
+    co.hold_corner_points = hold;
+    SelectionResult selected;
+    if (before > tol) {
+      selected = selectChain(chain, points, {}, so);
+    } else {
+      selected.fit = fitChain(chain, points, {}, co);
+      selected.corners = co.corners;
+    }
+    return split(selected, out);
+  };
+  std::vector<PartFit> out, held;
+  double after = attempt(false, out);
+  if (after > tol) {
+    const double after_held = attempt(true, held);
+    if (after_held < after) after = after_held, out = std::move(held);
   }
   // (within the tolerance, the least-squares corners are the better estimate)
   if (!(after < before) && !(after <= tol)) return false;
