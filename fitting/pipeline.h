@@ -16,7 +16,9 @@
 // A stroke with deliberate corners is fitted piecewise between them; the segment after
 // a corner carries corner = true. With stage 7, a corner beside a part that misses the
 // tolerance goes where the two parts fitted as one smooth part keep it (a tight bend
-// the clean-up took for a corner). A step more than ten median steps long (a font
+// the clean-up took for a corner); then all parts are fitted again as one chain whose
+// corners are free, so each corner lands where its two sides meet rather than on the
+// sample nearest it (fitChain's corners). A step more than ten median steps long (a font
 // outline's unsampled straight edge, samples the digitizer lost) is filled with points
 // along it for stages 2-7; the quality figures are measured on the stroke's own points.
 //
