@@ -267,14 +267,13 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
 TEST_P(FitDataTest, EveryStrokeFitsG2ClosesAndKeepsCorners) { fitDataSet(GetParam(), false); }
 
 // Disabled because the pipeline does not keep every real stroke within the default
-// tolerance yet. Measured with stage 7 (the default): 25 of 227 fitted strokes miss it
-// (by up to 1.70x): 13 $1, 2 MMG and 10 Omniglot strokes, all pixel-quantized or
-// stylus strokes with drawn corners. 4 Omniglot strokes missed before too (mouse
-// jitter beyond the noise floor); the others miss since the parts beside a corner are
-// made to meet there (before, stages 2-6 ended a part where its spline did, up to 2%
-// of the diagonal off the corner: 35 strokes passed with a broken curve).
-// Every one is G2 with its segments meeting, and the miss is reported. Run it with
-// --gtest_also_run_disabled_tests for the per-stroke list.
+// tolerance yet. Measured with stage 7 (the default): 6 of 227 fitted strokes miss it
+// (by up to 1.62x): 4 pixel-quantized Omniglot strokes (mouse stairs beyond the noise
+// floor) and 2 fast $1 strokes with drawn corners (by 1.01x and 1.10x). With each part
+// pinned to its corner sample, 25 missed; fitted as one chain with free corners
+// (fitAcrossCorners, fitting/pipeline.cpp), 6 do. Every one is G2 with its segments
+// meeting, and the miss is reported. Run it with --gtest_also_run_disabled_tests for the
+// per-stroke list.
 TEST_P(FitDataTest, DISABLED_EveryStrokeWithinTolerance) { fitDataSet(GetParam(), true); }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, FitDataTest, ::testing::ValuesIn(kDataSets),
