@@ -63,4 +63,13 @@ inline double boundingBoxDiagonal(const std::vector<Vec2>& points) {
   return (box.hi - box.lo).norm();
 }
 
+/// Median distance between consecutive points (0 for fewer than two): the sampling step.
+inline double medianStep(const std::vector<Vec2>& points) {
+  std::vector<double> steps;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) steps.push_back((points[i + 1] - points[i]).norm());
+  if (steps.empty()) return 0.0;
+  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
+  return steps[steps.size() / 2];
+}
+
 }  // namespace la

@@ -24,6 +24,9 @@ constexpr double kZeroEndAlpha = -1.0;
 constexpr double kNewKappaFraction = 0.5;
 // A split cuts at the worst point's foot, kept this far from the segment's ends.
 constexpr double kSplitMargin = 0.15;
+// A segment beside a corner shorter than this fraction of its neighbour in its part is a
+// collapse candidate (a hook).
+constexpr double kHookRatio = 0.2;
 // A split is kept if it brings the worst point within the tolerance or this factor closer.
 constexpr double kMarkedGain = 0.99;
 
@@ -125,16 +128,24 @@ std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector
 
 // Removes segment i: its neighbours meet at one joint, an inflection if they turn
 // opposite ways, else a curvature extremum; at an open end its neighbour reaches the end.
-// A segment beside a corner stays.
+// Beside a corner (a hook left where a part was pinned to a corner sample on the other
+// side's stroke), the corner takes its turning and its neighbour in its part reaches the
+// corner; the only segment of a part stays.
 std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
                              const std::vector<ChainCorner>& corners, std::size_t i, bool closed) {
   const std::size_t n = chain.size();
   if (n < (closed ? 4u : 2u)) return std::nullopt;
   Edit e = unedited(chain, feet, corners);
   const Piece gone = e.pieces[i];
-  if (gone.atCorner() || (i + 1 < n && e.pieces[i + 1].atCorner()) || (i + 1 == n && closed && e.pieces[0].atCorner()))
-    return std::nullopt;
-  if (!closed && (i == 0 || i + 1 == n)) {
+  const bool open_end = !closed && (i == 0 || i + 1 == n);
+  const bool corner_before = gone.atCorner();
+  const bool corner_after = i + 1 < n ? e.pieces[i + 1].atCorner() : closed && e.pieces[0].atCorner();
+  if (corner_before || corner_after) {
+    if ((corner_before && corner_after) || open_end) return std::nullopt;  // (a part's only segment)
+    Piece& next = e.pieces[(i + 1) % n];
+    if (corner_before) next.corner_turn = gone.corner_turn + gone.turning;
+    else next.corner_turn += gone.turning;
+  } else if (open_end) {
     // An end sliver: the neighbour takes its place up to the stroke's end.
     Piece& p = e.pieces[i == 0 ? 1 : n - 2];
     double& free_end = i == 0 ? p.kappa0 : p.kappa1;
@@ -162,7 +173,9 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
   for (Piece& p : e.pieces) fixZeroEnd(p);
   for (ChainFoot& f : e.feet) {
     if (f.segment == i) {  // onto the end of the segment before or the start of the one after
-      const bool to_before = closed ? f.u < 0.5 : (i + 1 == n || (i > 0 && f.u < 0.5));
+      const bool to_before = corner_before || corner_after ? corner_after
+                             : closed ? f.u < 0.5
+                                      : (i + 1 == n || (i > 0 && f.u < 0.5));
       f = to_before ? ChainFoot{(i + n - 1) % n, 1.0} : ChainFoot{(i + 1) % n, 0.0};
     }
     if (f.segment > i) --f.segment;  // the erase renumbers those after i
@@ -238,9 +251,16 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         std::size_t index;
       };
       std::vector<Candidate> candidates;
-      for (std::size_t i = 0; i < n; ++i)
-        if (std::abs(segs[i].turning()) < options.sliver_turning && !corner[i] && !corner[i + 1])
-          candidates.push_back({std::abs(segs[i].turning()), true, i});
+      for (std::size_t i = 0; i < n; ++i) {
+        const double turning = std::abs(segs[i].turning());
+        const bool beside = corner[i] || corner[i + 1];
+        if (beside && (corner[i] == corner[i + 1] || (!closed && (i == 0 || i + 1 == n)))) continue;  // (a part's only)
+        // a hook: a short segment between a corner and the rest of its part
+        const std::size_t inner = corner[i] ? i + 1 : i - 1;
+        const bool hook = beside && segs[i].length() < kHookRatio * segs[inner % n].length();
+        if ((turning < options.sliver_turning && options.refine) || hook)
+          candidates.push_back({hook ? 0.0 : turning, true, i});
+      }
       for (std::size_t j = 1; j < n && !slivers_only; ++j) {
         if (corner[j]) continue;
         const double k0 = std::abs(segs[j - 1].kappaStart()), kj = std::abs(segs[j].kappaStart());
@@ -285,7 +305,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   };
   simplify(true);
   // Splits while some point is out of tolerance (and the split helps).
-  while (edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
+  while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
     reweigh();
     if (out.fit.max_distance <= options.tolerance) break;
     const std::size_t worst =
@@ -300,7 +320,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     take(std::move(*r));
     ++out.splits;
   }
-  simplify(false);
+  if (options.refine) simplify(false);
   return out;
 }
 

@@ -14,8 +14,10 @@
 //  - merge: two segments whose joint is a weak curvature extremum or none at all (the
 //    curvature passes through it monotonically) become one.
 //
-// A chain with corners (ChainFitOptions::corners) keeps them: no merge across a corner,
-// no collapse of a segment beside one; a split renumbers them (SelectionResult::corners).
+// A chain with corners (ChainFitOptions::corners) keeps them: no merge across a corner;
+// a short segment beside one (a hook) is a collapse candidate, the corner then taking its
+// turning; a part keeps at least one segment; an edit renumbers the corners
+// (SelectionResult::corners).
 //
 // A collapse or merge is kept when the refitted chain stays within the tolerance and
 // the points do not object: the rise of the sum of squared distances, per unknown
@@ -42,6 +44,9 @@ struct SelectionOptions {
   /// Merged segments turn at most this (radians), so every control triangle stays well
   /// shaped (the app's editing works on them).
   double max_turning = 2.0;
+  /// Slivers collapsed, splits (after Lawson's reweighting) and merges tried; false: only
+  /// hooks beside corners are collapsed (for segments chosen already).
+  bool refine = true;
   ChainFitOptions fit;
 };
 

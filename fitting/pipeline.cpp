@@ -203,10 +203,7 @@ std::vector<Vec2> withoutStairs(const std::vector<Vec2>& p, bool closed) {
 
 std::vector<Part> splitAtCorners(const CleanStroke& c) {
   const auto& p = c.points;
-  std::vector<double> steps;
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) steps.push_back((p[i + 1] - p[i]).norm());
-  std::nth_element(steps.begin(), steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2), steps.end());
-  const double spacing = steps[steps.size() / 2];
+  const double spacing = medianStep(p);
   if (c.corners.empty()) return {Part{fillGaps(p, c.closed, spacing), c.closed, false}};
   std::vector<std::size_t> cuts = c.corners;
   if (!c.closed) {
@@ -1059,13 +1056,17 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   so.tolerance = (1.0 - kSelectionMargin) * tol;
   ChainFitOptions& co = so.fit;
   std::vector<std::size_t> first_point;
-  // the larger of the deviation and the stray (at a corner's tip: beyond the warning's)
+  // The larger of the deviation and the stray. At a corner's tip, a stray counts beyond
+  // the warning's bound and a sample step: the polyline between two samples cuts a sharp
+  // corner by up to about a step.
   double before = 0.0;
+  double tip_allowance = kStrayWarning * tol;
+  for (const Part& part : parts) tip_allowance = std::max(tip_allowance, kStrayWarning * tol + medianStep(part.points));
   for (std::size_t k = 0; k < n; ++k) {
     PartFit& fit = fits[k];
     if (!fit.g2.usable() || fit.segments.empty()) return false;
     if (std::isnan(fit.max_dev)) fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
-    fit.stray = strayOf(fit.segments, parts[k], diag, kStrayWarning * tol);
+    fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
     first_point.push_back(points.empty() ? 0 : points.size() - 1);  // (the corner is both parts')
     if (parts[k].starts_at_corner) co.corners.push_back({chain.size(), first_point.back()});
     if (fit.spline) chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
@@ -1114,7 +1115,7 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
         fit.segments = {LaSegment::arc((b - a).norm(), a, angleOf(b - a), 0.0)};
         fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
       }
-      fit.stray = strayOf(fit.segments, parts[k], diag, kStrayWarning * tol);
+      fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
       worst = std::max({worst, fit.max_dev, fit.stray});
       fit.warnings.clear();  // (of the stages whose chain this replaces)
       fit.g2 = {SolveStatus::kConverged, joint.report.iterations, 0.0, "G2 by construction (stage 7, across corners)"};
@@ -1129,17 +1130,12 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     }
     return worst;
   };
-  // (the segments are chosen again only where the curve misses: else one fit)
+  // (the segments are chosen again only where the curve misses: else they stay, but for
+  // hooks beside corners)
+  so.refine = before > tol;
   auto attempt = [&](bool hold, std::vector<PartFit>& out) {
     co.hold_corner_points = hold;
-    SelectionResult selected;
-    if (before > tol) {
-      selected = selectChain(chain, points, {}, so);
-    } else {
-      selected.fit = fitChain(chain, points, {}, co);
-      selected.corners = co.corners;
-    }
-    return split(selected, out);
+    return split(selectChain(chain, points, {}, so), out);
   };
   std::vector<PartFit> out, held;
   double after = attempt(false, out);

@@ -116,15 +116,6 @@ std::vector<double> arcLengths(const std::vector<Vec2>& p) {
   return s;
 }
 
-double medianStep(const std::vector<Vec2>& p) {
-  std::vector<double> steps;
-  for (std::size_t i = 1; i < p.size(); ++i) steps.push_back((p[i] - p[i - 1]).norm());
-  if (steps.empty()) return 0.0;
-  auto mid = steps.begin() + static_cast<std::ptrdiff_t>(steps.size() / 2);
-  std::nth_element(steps.begin(), mid, steps.end());
-  return *mid;
-}
-
 double unsignedAngle(const Vec2& a, const Vec2& b) { return std::abs(signedAngle(a, b)); }
 
 /// Distance from q to the segment [a, b].
