@@ -142,9 +142,13 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
   const bool corner_after = i + 1 < n ? e.pieces[i + 1].atCorner() : closed && e.pieces[0].atCorner();
   if (corner_before || corner_after) {
     if ((corner_before && corner_after) || open_end) return std::nullopt;  // (a part's only segment)
+    // The neighbour in its part grows by the hook's length (at its curvature there), so
+    // that it reaches the corner; the corner turns by the rest of the hook's turning.
     Piece& next = e.pieces[(i + 1) % n];
-    if (corner_before) next.corner_turn = gone.corner_turn + gone.turning;
-    else next.corner_turn += gone.turning;
+    Piece& neighbour = corner_before ? next : e.pieces[i - 1];
+    const double grown = (corner_before ? neighbour.kappa0 : neighbour.kappa1) * chain[i].length();
+    neighbour.turning += grown;
+    next.corner_turn = (corner_before ? gone.corner_turn : next.corner_turn) + gone.turning - grown;
   } else if (open_end) {
     // An end sliver: the neighbour takes its place up to the stroke's end.
     Piece& p = e.pieces[i == 0 ? 1 : n - 2];
@@ -158,8 +162,12 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
     Piece& b = e.pieces[after];
     double kappa = 0.0;
     if (signOf(a) == signOf(b)) {
+      // (the sliver's own curvature where it has one of its neighbours' sign: the joint
+      // may be a maximum as well as a minimum)
       const double ka = std::abs(a.kappa0), kb = std::abs(b.kappa1);
-      kappa = signOf(a) * kNewKappaFraction * (ka > 0.0 && kb > 0.0 ? std::min(ka, kb) : std::max(ka, kb));
+      const double own = std::sqrt(std::abs(gone.kappa0 * gone.kappa1));
+      kappa = signOf(a) * (own > 0.0 && signOf(gone) == signOf(a) ? own
+                           : kNewKappaFraction * (ka > 0.0 && kb > 0.0 ? std::min(ka, kb) : std::max(ka, kb)));
     }
     a.kappa1 = b.kappa0 = kappa;
     a.turning += 0.5 * gone.turning;
@@ -305,18 +313,27 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   };
   simplify(true);
   // Splits while some point is out of tolerance (and the split helps).
+  // The split at the worst point of a fit.
+  auto splitAtWorst = [&](const ChainFitResult& from) {
+    const std::size_t worst = std::max_element(from.distance.begin(), from.distance.end()) - from.distance.begin();
+    const ChainFoot at = from.feet[worst];
+    ++edits;
+    return attempt(split(from.segments, from.feet, out.corners, at.segment, std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
+  };
   while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
+    const ChainFitResult unweighted = out.fit;
     reweigh();
     if (out.fit.max_distance <= options.tolerance) break;
-    const std::size_t worst =
-        std::max_element(out.fit.distance.begin(), out.fit.distance.end()) - out.fit.distance.begin();
-    const ChainFoot at = out.fit.feet[worst];
-    auto r = attempt(split(out.fit.segments, out.fit.feet, out.corners, at.segment,
-                           std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
-    ++edits;
     // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
-    const double gained = r ? r->fit.max_distance : INFINITY;
-    if (!(gained <= options.tolerance || gained < kMarkedGain * out.fit.max_distance)) break;
+    auto helps = [&](const std::optional<Attempt>& r) {
+      return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance);
+    };
+    auto r = splitAtWorst(out.fit);
+    // Lawson's rounds may have bent the chain where the segment is missing (a curvature
+    // spike at a joint): the split is tried from the unweighted fit too.
+    if (!helps(r) && unweighted.max_distance != out.fit.max_distance && edits < options.max_edits)
+      r = splitAtWorst(unweighted);
+    if (!helps(r)) break;
     take(std::move(*r));
     ++out.splits;
   }
