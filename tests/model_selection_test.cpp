@@ -216,6 +216,26 @@ void expectCornerKept(const SelectionResult& r, const std::vector<LaSegment>& tr
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
+// selectChain from `start`, whose corner (at joint `corner`) has a hook beside it: the
+// hook is collapsed (and with refine off, nothing else is edited), the corner renumbered
+// to joint 2, where the second part now starts, and kept.
+void expectHookCollapsed(const std::vector<LaSegment>& start, std::size_t corner, const std::vector<Vec2>& points,
+                         const std::vector<LaSegment>& truth, bool refine) {
+  SelectionOptions options;
+  options.tolerance = kTolerance;
+  options.refine = refine;
+  options.fit.corners = {{corner, kCornerPoint}};
+  const SelectionResult r = selectChain(start, points, {}, options);
+  EXPECT_GE(r.collapses, 1);
+  EXPECT_EQ(r.fit.segments.size(), 3u);
+  if (!refine) {
+    EXPECT_EQ(r.splits + r.merges, 0);
+  }
+  ASSERT_EQ(r.corners.size(), 1u);
+  EXPECT_EQ(r.corners[0].joint, 2u);
+  expectCornerKept(r, truth, points);
+}
+
 // A start chain with a hook after the corner: a 10-unit segment (a tenth of its
 // neighbour) curving 0.06 -> 0.02, which the points (sampled from the truth without it)
 // do not need. With refine = false only hooks are edited: the hook is collapsed and
@@ -233,19 +253,7 @@ TEST(SelectChain, CollapsesAHookBesideACorner) {
   ASSERT_EQ(start.size(), 4u);
   for (const bool refine : {false, true}) {
     SCOPED_TRACE(refine ? "refine" : "hooks only");
-    SelectionOptions options;
-    options.tolerance = kTolerance;
-    options.refine = refine;
-    options.fit.corners = {{2, kCornerPoint}};
-    const SelectionResult r = selectChain(start, points, {}, options);
-    EXPECT_GE(r.collapses, 1);
-    EXPECT_EQ(r.fit.segments.size(), 3u);
-    if (!refine) {
-      EXPECT_EQ(r.splits + r.merges, 0);
-    }
-    ASSERT_EQ(r.corners.size(), 1u);
-    EXPECT_EQ(r.corners[0].joint, 2u);
-    expectCornerKept(r, truth, points);
+    expectHookCollapsed(start, 2, points, truth, refine);
   }
 }
 
@@ -283,16 +291,7 @@ TEST(SelectChain, CollapsesAHookBeforeACorner) {
   const std::vector<Vec2> points = sampleChain(truth, 60, kSigma, 7);
   std::vector<LaSegment> start = buildChain({0, 0}, 0.3, 0.01, {{1.0, 80.0, 0.025}, {-1.0, 67.0, first[1].kappa(67.0)}, {1.0, 3.0, 0.03}});
   appendChain(start, start.back().end(), truth[2].theta0(), 0.02, {{0.5, 100.0, 0.006}});
-  SelectionOptions options;
-  options.tolerance = kTolerance;
-  options.refine = false;
-  options.fit.corners = {{3, kCornerPoint}};
-  const SelectionResult r = selectChain(start, points, {}, options);
-  EXPECT_GE(r.collapses, 1);
-  EXPECT_EQ(r.fit.segments.size(), 3u);
-  ASSERT_EQ(r.corners.size(), 1u);
-  EXPECT_EQ(r.corners[0].joint, 2u);
-  expectCornerKept(r, truth, points);
+  expectHookCollapsed(start, 3, points, truth, false);
 }
 
 // A corner chain (two segments, the corner, two segments of the other sign) started with
