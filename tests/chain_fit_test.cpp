@@ -141,7 +141,9 @@ TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
   ChainFitOptions options;
   options.max_iterations = 100;  // the start is far: each alpha is off by 0.5 to 1
   const ChainFitResult r = fitChain(start, points, {}, options);
-  const ChainFitResult at_truth = fitChain(truth, points, {}, {.max_iterations = 0});
+  ChainFitOptions unfitted;
+  unfitted.max_iterations = 0;
+  const ChainFitResult at_truth = fitChain(truth, points, {}, unfitted);
   ASSERT_TRUE(r.report.usable()) << r.report.message;
   ASSERT_EQ(r.segments.size(), 3u);
   expectG2(r.segments);
@@ -254,7 +256,9 @@ TEST(ChainFit, SnapsAnEndBySimilarityWithinReach) {
   EXPECT_LE(moved, reach);
   EXPECT_GT(moved, 0.5 * reach);  // the bound is not loose by more than that here
   const std::vector<LaSegment> other = snapToJoints(chain, false, corner, {}, 0.5 * reach);
-  if (!other.empty()) EXPECT_GT(std::abs(other[0].kappaEnd() - other[1].kappaStart()), 0.0) << "not by makeG2";
+  if (!other.empty()) {
+    EXPECT_GT(std::abs(other[0].kappaEnd() - other[1].kappaStart()), 0.0) << "not by makeG2";
+  }
 }
 
 // Feet handed in wrong (every point's foot at the middle of the first segment, as an
