@@ -58,8 +58,11 @@ void expectValidCurve(const TripleLaHermiteSolve& solve, double alpha, const Her
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const LaSegment& seg = pieces[i].segment;
     EXPECT_FALSE(pieces[i].corner) << what;
-    if (std::isinf(alpha)) EXPECT_TRUE(seg.isCircular()) << what;
-    else if (!seg.isCircular()) EXPECT_EQ(seg.alpha(), alpha) << what << " piece " << i;
+    if (std::isinf(alpha)) {
+      EXPECT_TRUE(seg.isCircular()) << what;
+    } else if (!seg.isCircular()) {
+      EXPECT_EQ(seg.alpha(), alpha) << what << " piece " << i;
+    }
     s += seg.length();
     if (i + 1 == pieces.size()) break;
     const LaSegment& next = pieces[i + 1].segment;
@@ -329,7 +332,9 @@ TEST(TripleLaHermite, SeededSweepConvergesOrSaysSo) {
     }
     std::cout << "alpha " << alpha << ": " << converged << " of " << total << " converged\n";
     // alpha < 0 has no sign constraints: it should solve nearly everything here.
-    if (alpha < 0.0) EXPECT_GE(converged, total * 9 / 10) << "alpha " << alpha;
+    if (alpha < 0.0) {
+      EXPECT_GE(converged, total * 9 / 10) << "alpha " << alpha;
+    }
   }
 }
 

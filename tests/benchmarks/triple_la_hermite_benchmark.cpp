@@ -7,7 +7,7 @@
 // the run); the S-shaped set needs an inflection, so alpha < 0 only, -3 to -0.25. Both
 // lists include alphas whose -1/alpha is not an integer (-2.5, -1.5, -0.75): there the
 // LA law is singular at an inflection and the fast model needs its graded panels.
-//   build/tests/benchmarks/triple_la_hermite_benchmark --benchmark_repetitions=5 \
+//   build/tests/benchmarks/triple_la_hermite_benchmark --benchmark_repetitions=5
 //       --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
