@@ -993,7 +993,8 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
 // result not kept) ends where its smoothing spline does, up to about a tolerance from
 // the corner: the curve would be broken there. Each such pair of ends moves to their
 // midpoint, each part's chain by the similarity that takes its two ends to their places
-// (movedOntoEnds). Where that fails the gap stays, and g0_gap shows it.
+// (movedOntoEnds). Where that fails the gap stays, and g0_gap shows it. (After the fit
+// across corners the parts meet already, but for a closed chain's seam, to rounding.)
 void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, const G2Options& g2) {
   const std::size_t n = fits.size();
   if (n == 0) return;
