@@ -1134,14 +1134,20 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   // (the segments are chosen again only where the curve misses: else they stay, but for
   // hooks beside corners)
   so.refine = before > tol;
-  auto attempt = [&](bool hold, std::vector<PartFit>& out) {
-    co.hold_corner_points = hold;
-    return split(selectChain(chain, points, {}, so), out);
-  };
   std::vector<PartFit> out, held;
-  double after = attempt(false, out);
+  const SelectionResult free = selectChain(chain, points, {}, so);
+  double after = split(free, out);
   if (after > tol) {
-    const double after_held = attempt(true, held);
+    // (from the free fit where it improved: its hooks are gone and its corners near)
+    co.hold_corner_points = true;
+    SelectionResult held_fit;
+    if (free.fit.improved) {
+      co.corners = free.corners;
+      held_fit = selectChain(free.fit.segments, points, free.fit.feet, so);
+    } else {
+      held_fit = selectChain(chain, points, {}, so);
+    }
+    const double after_held = split(held_fit, held);
     if (after_held < after) after = after_held, out = std::move(held);
   }
   // (within the tolerance, the least-squares corners are the better estimate)
