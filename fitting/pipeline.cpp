@@ -1041,8 +1041,9 @@ LaSegment bentLine(const LaSegment& line, const std::vector<Vec2>& points) {
 // This fits all the parts' chains as one chain whose corners are free (fitChain's
 // corners: position continuous, tangent and curvature free), so the fit places each
 // corner where the sides meet; where that misses the tolerance, also with each corner's
-// point held at the corner (the tip of a rounded corner), the better kept. Where the
-// curve misses, the segments are chosen again too (selectChain). A straight part enters
+// point held at the corner (the tip of a rounded corner), starting from the first try's
+// chain, the better kept. Where the curve misses, the segments are chosen again too
+// (selectChain; else only hooks beside corners are collapsed). A straight part enters
 // as a nearly straight arc and leaves as the line between its new ends (unless the
 // selection split it). Kept where it brings the curve closer to the points, counting the
 // stray, or keeps it within the tolerance. True if it changed the chains; false where a
