@@ -139,4 +139,8 @@ class LaSegment {
   double growth_ = 0.0;    // g of the exponential law
 };
 
+/// The tangent's turn from the end of `a` to the start of `b`, wrapped to (-pi, pi]: 0
+/// at a G1 joint, the corner's angle at a corner.
+inline double turnBetween(const LaSegment& a, const LaSegment& b) { return wrapAngle(b.theta0() - a.theta(a.length())); }
+
 }  // namespace la

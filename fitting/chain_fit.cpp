@@ -1006,8 +1006,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
     turning += initial[i].turning();
     if (i + 1 < n && corner[i + 1]) {
-      const LaSegment& before = initial[i];
-      const double turn = wrapAngle(initial[i + 1].theta0() - before.theta(before.length()));
+      const double turn = turnBetween(initial[i], initial[i + 1]);
       layout.corner_turn[i + 1] = add(turn, -std::numbers::pi, std::numbers::pi, kMaxAngleStep);
       turning += turn;
     }
@@ -1284,7 +1283,7 @@ std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool
     double length = 0.0;
     for (const LaSegment& s : segments) length += s.length();
     const bool at_end = (last.end() - end).norm() <= kClosed * length;
-    const bool smooth = !closed || std::abs(wrapAngle(last.theta(last.length()) - first.theta0())) <= kClosed;
+    const bool smooth = !closed || std::abs(turnBetween(last, first)) <= kClosed;
     if (at_end && smooth && (!closed || (end - first.start()).norm() <= kClosed * length)) return segments;
   }
   if (!closed && !segments.empty()) {

@@ -34,10 +34,8 @@ std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain, const std::vect
   std::vector<Piece> out;
   for (const LaSegment& s : chain)
     out.push_back({std::isfinite(s.alpha()) ? s.alpha() : kZeroEndAlpha, s.kappaStart(), s.kappaEnd(), s.turning()});
-  for (const ChainCorner& c : corners) {
-    const LaSegment& before = chain[(c.joint + chain.size() - 1) % chain.size()];
-    out[c.joint].corner_turn = c.joint == 0 ? 0.0 : wrapAngle(chain[c.joint].theta0() - before.theta(before.length()));
-  }
+  for (const ChainCorner& c : corners)
+    out[c.joint].corner_turn = c.joint == 0 ? 0.0 : turnBetween(chain[c.joint - 1], chain[c.joint]);
   return out;
 }
 

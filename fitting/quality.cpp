@@ -198,7 +198,7 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
     const LaSegment& b = curve.pieces[j].segment;
     q.g0_gap = std::max(q.g0_gap, (a.end() - b.start()).norm() / diag);  // corners too: a corner is no break
     if (curve.pieces[j].corner) continue;
-    q.g1_gap = std::max(q.g1_gap, std::abs(wrapAngle(a.theta(a.length()) - b.theta0())));
+    q.g1_gap = std::max(q.g1_gap, std::abs(turnBetween(a, b)));
     q.g2_gap = std::max(q.g2_gap, relativeGap(a.kappaEnd(), b.kappaStart(), diag));
     const int ta = trend(a), tb = trend(b);
     if (ta != 0 && tb != 0 && ta != tb) ++q.extrema;
