@@ -495,7 +495,7 @@ struct Layout {
   // by the two sides of a smooth joint, one per side at a corner
   std::vector<int> kappa_start, kappa_end;
   std::vector<int> corner_turn;   // per joint 0..n: the tangent's turn at a corner, else -1
-  bool seam_corner = false;       // closed: the chain returns to its start in position only
+  std::vector<bool> corner;       // per segment: it starts at a corner
   std::vector<int> turning, alpha;  // per segment: log |total turning| (sets the length), alpha
   std::vector<ZeroEnd> zero;      // per segment
   std::vector<double> turn_sign;  // per segment
@@ -506,7 +506,9 @@ struct Layout {
   double prior_alpha = 0.0, prior_weight = 0.0;  // residual prior_weight (alpha - prior_alpha) per segment
   int size = 0;
 
-  int constraints() const { return closed ? (seam_corner ? 2 : 3) : fix_end ? 2 : 0; }
+  // closed with a corner at its seam: the chain returns to its start in position only
+  bool seamCorner() const { return closed && corner[0]; }
+  int constraints() const { return closed ? (seamCorner() ? 2 : 3) : fix_end ? 2 : 0; }
   Law law(const Eigen::VectorXd& x, std::size_t i) const {
     Law l;
     l.alpha = x[alpha[i]];
@@ -543,8 +545,7 @@ struct ChainModel : ChainGeometry {
 bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
   const std::size_t n = layout.segments;
   m.closed = layout.closed;
-  m.corner.assign(n, false);
-  for (std::size_t i = 0; i < n; ++i) m.corner[i] = layout.corner_turn[i] >= 0 || (i == 0 && layout.seam_corner);
+  m.corner = layout.corner;
   m.laws.resize(n);
   m.panels.resize(n);
   m.rotations.resize(n);
@@ -666,7 +667,7 @@ class ChainProblem {
       r[static_cast<Eigen::Index>(n_points + ends() + i)] = layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
     c.resize(layout_.constraints());
     const std::size_t n = layout_.segments;
-    if (layout_.closed && layout_.seam_corner) {
+    if (layout_.seamCorner()) {
       c << m.start[n] - m.start[0];
     } else if (layout_.closed) {
       c << m.start[n] - m.start[0], m.angle[n] - m.angle[0] - layout_.total_turning;
@@ -925,7 +926,8 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   // Corners: joints where only the position is continuous; each point's foot stays on
   // its part's segments (FootRange).
   const std::size_t m = points.size();
-  std::vector<bool> corner(n + 1, false);
+  std::vector<bool>& corner = layout.corner;
+  corner.assign(n, false);
   std::vector<FootRange> ranges;
   for (std::size_t a = 0; a < options.corners.size(); ++a) {
     const ChainCorner& c = options.corners[a];
@@ -945,7 +947,6 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     const std::size_t before = c.point > 0 ? c.point - 1 : m - 1, after = c.point + 1;
     ranges[c.point] = {ranges[before].first, ranges[after].last, true, options.hold_corner_points ? ranges[after].first : SIZE_MAX};
   }
-  layout.seam_corner = options.closed && corner[0];
   // Curvature values: one per smooth joint (the geometric mean of the two sides where a
   // G2 chain has round-off), one per side of a corner; each segment's ends name theirs.
   const std::size_t joints = options.closed ? n : n + 1;
@@ -955,7 +956,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     const double right = j < n ? initial[j].kappaStart() : initial[n - 1].kappaEnd();
     const double left = j > 0 ? initial[j - 1].kappaEnd() : (options.closed ? initial[n - 1].kappaEnd() : right);
     const std::size_t before = (j + n - 1) % n;  // (an open chain's joint 0 has none)
-    if (corner[j]) {
+    if (j < n && corner[j]) {
       at_end[before] = kappa.size();
       kappa.push_back(left * scale);
       at_start[j] = kappa.size();
@@ -1116,7 +1117,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   auto exactConstraints = [&](const std::vector<LaSegment>& chain, const Eigen::VectorXd& xx) {
     const Vec2 end = (chain.back().end() - origin) / scale;
     Eigen::VectorXd value(layout.constraints());
-    if (layout.closed && layout.seam_corner) {
+    if (layout.seamCorner()) {
       value << end - (chain.front().start() - origin) / scale;
     } else if (layout.closed) {
       double turning = 0.0;

@@ -37,9 +37,9 @@
 // unknown angle and each side has its own curvature, so only the position is
 // continuous. Each point's foot stays on the segments of its own part (the points
 // between two corners' points, on the segments between the two corners), so a point
-// beside a hairpin corner is not claimed by the other side; a corner's own point is held
-// at the corner, its residual the distance itself (so is any point whose foot ends at a
-// corner: it has no normal foot there).
+// beside a hairpin corner is not claimed by the other side; a corner's own point may lie
+// on either side (or is held at the corner: hold_corner_points). A point whose foot ends
+// at a corner has no normal foot there: its residual is the distance itself.
 //
 // Evaluation. theta(u) and kappa(u) of a segment have closed forms (written with
 // expm1/log1p so that alpha = 0, alpha = 1 and the circle are ordinary points),
