@@ -1058,25 +1058,27 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   so.tolerance = (1.0 - kSelectionMargin) * tol;
   ChainFitOptions& co = so.fit;
   std::vector<std::size_t> first_point;
-  // The larger of the deviation and the stray. At a corner's tip, a stray counts beyond
-  // the warning's bound and a sample step: the polyline between two samples cuts a sharp
-  // corner by up to about a step.
-  double before = 0.0;
-  double tip_allowance = kStrayWarning * tol;
-  for (const Part& part : parts) tip_allowance = std::max(tip_allowance, kStrayWarning * tol + medianStep(part.points));
   for (std::size_t k = 0; k < n; ++k) {
-    PartFit& fit = fits[k];
+    const PartFit& fit = fits[k];
     if (!fit.g2.usable() || fit.segments.empty()) return false;
-    if (std::isnan(fit.max_dev)) fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
-    fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
     first_point.push_back(points.empty() ? 0 : points.size() - 1);  // (the corner is both parts')
     if (parts[k].starts_at_corner) co.corners.push_back({chain.size(), first_point.back()});
     if (fit.spline) chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
     else chain.push_back(bentLine(fit.segments.front(), parts[k].points));
     points.insert(points.end(), parts[k].points.begin() + (points.empty() ? 0 : 1), parts[k].points.end());
-    before = std::max({before, fit.max_dev, fit.stray});
   }
   if (closed) points.pop_back();  // the first corner again
+  // The larger of the deviation and the stray. At a corner's tip, a stray counts beyond
+  // the warning's bound and a sample step: the polyline between two samples cuts a sharp
+  // corner by up to about a step.
+  const double tip_allowance = kStrayWarning * tol + medianStep(points);
+  double before = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    PartFit& fit = fits[k];
+    if (std::isnan(fit.max_dev)) fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
+    fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
+    before = std::max({before, fit.max_dev, fit.stray});
+  }
   co.closed = closed;
   co.min_alpha = options.min_alpha;
   co.max_alpha = options.max_alpha;
