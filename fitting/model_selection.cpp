@@ -310,22 +310,22 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     }
   };
   simplify(true);
-  // Splits while some point is out of tolerance (and the split helps).
-  // The split at the worst point of a fit.
+  // The split at the worst point of a fit (an edit).
   auto splitAtWorst = [&](const ChainFitResult& from) {
     const std::size_t worst = std::max_element(from.distance.begin(), from.distance.end()) - from.distance.begin();
     const ChainFoot at = from.feet[worst];
     ++edits;
     return attempt(split(from.segments, from.feet, out.corners, at.segment, std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
   };
+  // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
+  auto helps = [&](const std::optional<Attempt>& r) {
+    return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance);
+  };
+  // Splits while some point is out of tolerance (and the split helps).
   while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
     const ChainFitResult unweighted = out.fit;
     reweigh();
     if (out.fit.max_distance <= options.tolerance) break;
-    // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
-    auto helps = [&](const std::optional<Attempt>& r) {
-      return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance);
-    };
     auto r = splitAtWorst(out.fit);
     // Lawson's rounds may have bent the chain where the segment is missing (a curvature
     // spike at a joint): the split is tried from the unweighted fit too.
