@@ -4,84 +4,24 @@
 
 #include "fitting/chain_fit.h"
 
+#include "tests/test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
-#include <random>
 
 #include <Eigen/Geometry>
 
 namespace la {
 namespace {
 
-struct Spec {
-  double alpha, length, kappa_end;
-};
-
-// An open G2 chain from its start and per-segment (alpha, length, end curvature).
-std::vector<LaSegment> buildChain(Vec2 start, double theta, double kappa, const std::vector<Spec>& specs) {
-  std::vector<LaSegment> chain;
-  for (const Spec& s : specs) {
-    chain.emplace_back(s.alpha, s.length, start, theta, kappa, s.kappa_end);
-    start = chain.back().end();
-    theta = chain.back().theta(s.length);
-    kappa = s.kappa_end;
-  }
-  return chain;
-}
-
-// `per_segment` points on each segment, uniform in arc length, with gaussian noise
-// sigma (seeded), in order along the chain (a closed chain's start only once).
-std::vector<Vec2> sampleChain(const std::vector<LaSegment>& chain, int per_segment, double sigma, unsigned seed,
-                              bool closed = false) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, sigma);
-  std::vector<Vec2> points;
-  for (std::size_t i = 0; i < chain.size(); ++i) {
-    const int last = closed && i + 1 == chain.size() ? per_segment - 1 : per_segment;
-    for (int k = i == 0 ? 0 : 1; k <= last; ++k)
-      points.push_back(chain[i].position(chain[i].length() * k / per_segment) + Vec2(noise(rng), noise(rng)));
-  }
-  return points;
-}
-
-// Distance from each point to the chain, independent of chain_fit: the nearest vertex
-// of a dense polyline (LaSegment::sample), then Newton on the closest-point condition
-// with LaSegment's own position, tangent and curvature (adaptive quadrature).
-std::vector<double> distances(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points) {
-  struct Node {
-    Vec2 p;
-    std::size_t segment;
-    double s;
-  };
-  std::vector<Node> nodes;
-  for (std::size_t i = 0; i < chain.size(); ++i) {
-    const CurveSamples smp = chain[i].sample(2000);
-    for (std::size_t k = 0; k < smp.size(); ++k) nodes.push_back({smp.point[k], i, smp.s[k]});
-  }
-  std::vector<double> out;
-  for (const Vec2& p : points) {
-    const Node* best = &nodes.front();
-    for (const Node& n : nodes)
-      if ((n.p - p).squaredNorm() < (best->p - p).squaredNorm()) best = &n;
-    const LaSegment& seg = chain[best->segment];
-    double s = best->s;
-    for (int it = 0; it < 8; ++it) {
-      const Vec2 d = p - seg.position(s), t = seg.tangent(s), n(-t.y(), t.x());
-      s = std::clamp(s + t.dot(d) / (1.0 - seg.kappa(s) * n.dot(d)), 0.0, seg.length());
-    }
-    out.push_back((p - seg.position(s)).norm());
-  }
-  return out;
-}
-
-double maxDistance(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points) {
-  const std::vector<double> d = distances(chain, points);
-  return *std::max_element(d.begin(), d.end());
-}
+using test::buildChain;
+using test::distances;
+using test::maxDistance;
+using test::sampleChain;
+using test::Spec;
 
 // G2 at every joint: positions to 1e-9 of the length, tangents to 1e-12 rad, curvature
 // to `kappa_gap` relative (exact for fitChain's chains, which share the joint curvature;

@@ -6,37 +6,22 @@
 
 #include "fitting/model_selection.h"
 
+#include "tests/test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
-#include <random>
 #include <tuple>
 
 namespace la {
 namespace {
 
-struct Spec {
-  double alpha, length, kappa_end;
-};
-
-// An open G2 chain from its start pose and curvature and per-segment (alpha, length, end
-// curvature), appended to `chain`.
-void appendChain(std::vector<LaSegment>& chain, Vec2 start, double theta, double kappa, const std::vector<Spec>& specs) {
-  for (const Spec& s : specs) {
-    chain.emplace_back(s.alpha, s.length, start, theta, kappa, s.kappa_end);
-    start = chain.back().end();
-    theta = chain.back().theta(s.length);
-    kappa = s.kappa_end;
-  }
-}
-
-std::vector<LaSegment> buildChain(Vec2 start, double theta, double kappa, const std::vector<Spec>& specs) {
-  std::vector<LaSegment> chain;
-  appendChain(chain, start, theta, kappa, specs);
-  return chain;
-}
+using test::appendChain;
+using test::buildChain;
+using test::maxDistance;
+using test::sampleChain;
+using test::Spec;
 
 // Two G2 parts meeting at a corner: the second starts where the first ends, its tangent
 // turned by `turn`, with its own curvature `kappa`. The corner is joint first.size().
@@ -46,46 +31,6 @@ std::vector<LaSegment> cornerChain(std::vector<LaSegment> first, double turn, do
   return first;
 }
 
-// `per_segment` points on each segment, uniform in arc length, with gaussian noise sigma
-// (seeded); point per_segment * j is joint j (a corner's point).
-std::vector<Vec2> sampleChain(const std::vector<LaSegment>& chain, int per_segment, double sigma, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, sigma);
-  std::vector<Vec2> points;
-  for (std::size_t i = 0; i < chain.size(); ++i)
-    for (int k = i == 0 ? 0 : 1; k <= per_segment; ++k)
-      points.push_back(chain[i].position(chain[i].length() * k / per_segment) + Vec2(noise(rng), noise(rng)));
-  return points;
-}
-
-// The largest distance from the points to the chain, independent of chain_fit: the
-// nearest vertex of a dense polyline (LaSegment::sample), then Newton on the
-// closest-point condition with LaSegment's own position, tangent and curvature.
-double maxDistance(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points) {
-  std::vector<CurveSamples> dense;
-  for (const LaSegment& seg : chain) dense.push_back(seg.sample(1000));
-  double worst = 0.0;
-  for (const Vec2& p : points) {
-    std::size_t best_seg = 0;
-    double best_s = 0.0, best = INFINITY;
-    for (std::size_t i = 0; i < chain.size(); ++i)
-      for (std::size_t k = 0; k < dense[i].size(); ++k)
-        if (const double d = (dense[i].point[k] - p).squaredNorm(); d < best) best = d, best_seg = i, best_s = dense[i].s[k];
-    const LaSegment& seg = chain[best_seg];
-    for (int it = 0; it < 8; ++it) {
-      const Vec2 d = p - seg.position(best_s), t = seg.tangent(best_s), n(-t.y(), t.x());
-      best_s = std::clamp(best_s + t.dot(d) / (1.0 - seg.kappa(best_s) * n.dot(d)), 0.0, seg.length());
-    }
-    worst = std::max(worst, (p - seg.position(best_s)).norm());
-  }
-  return worst;
-}
-
-// The tangent's turn where segment j starts (wrapped to (-pi, pi]).
-double turnAt(const std::vector<LaSegment>& chain, std::size_t j) {
-  const LaSegment& before = chain[j - 1];
-  return std::remainder(chain[j].theta0() - before.theta(before.length()), 2.0 * std::numbers::pi);
-}
 
 constexpr double kSigma = 0.05;                // noise of every point, per coordinate
 constexpr double kTolerance = 4.0 * kSigma;    // SelectionOptions::tolerance throughout
@@ -212,7 +157,7 @@ void expectCornerKept(const SelectionResult& r, const std::vector<LaSegment>& tr
   ASSERT_GE(j, 1u);
   ASSERT_LT(j, r.fit.segments.size());
   EXPECT_LT((r.fit.segments[j].start() - truth[2].start()).norm(), kTolerance) << "joint " << j;
-  EXPECT_NEAR(turnAt(r.fit.segments, j), kCornerTurn, 0.1) << "joint " << j;
+  EXPECT_NEAR(turnBetween(r.fit.segments[j - 1], r.fit.segments[j]), kCornerTurn, 0.1) << "joint " << j;
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
