@@ -10,7 +10,7 @@
 //    other exception, or StrokeError on a fittable stroke, fails;
 //  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
 //    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
-//    relative), in a test of its own that is disabled until every stroke meets it;
+//    relative), but for the known misses (kKnownMisses), which are reported;
 //  - glyph contours (fitted with assume_closed, see kDataSets) and the $1 'circle'
 //    gestures come out closed (curve.closed);
 //  - the $1 caret, v, rectangle, triangle and star keep their corners
@@ -160,9 +160,16 @@ Expectation expectationFor(const std::string& dataset, const fs::path& file) {
 
 class FitDataTest : public ::testing::TestWithParam<DataSet> {};
 
-// Runs every stroke of a data set; `within_tolerance` adds the criterion max_dev <=
-// tolerance (the others always apply).
-void fitDataSet(const DataSet& set, bool within_tolerance) {
+// The strokes known to miss the default tolerance, the only ones excused from it (each
+// is reported when run): 2 of the 227, fast $1 strokes with drawn corners, by 1.008x
+// (x) and 1.07x (triangle, whose leg wiggles where no segment may turn back).
+const std::set<std::string> kKnownMisses = {
+    "strokes/dollar1_unistroke_s01_pilot/csv/fast/x.csv stroke 0",
+    "strokes/dollar1_unistroke_s01_pilot/csv/slow/triangle.csv stroke 0",
+};
+
+// Runs every stroke of a data set.
+void fitDataSet(const DataSet& set) {
   const std::vector<fs::path> files = filesOf(kData / set.folder, set.extension);
   ASSERT_FALSE(files.empty()) << "no " << set.extension << " files under " << (kData / set.folder);
 
@@ -185,7 +192,8 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
     const Expectation expect = expectationFor(set.name, file);
     for (std::size_t k = 0; k < all.size(); ++k) {
       ++strokes;
-      const std::string where = rel + " stroke " + std::to_string(k) + " (" + std::to_string(all[k].samples.size()) + " points)";
+      const std::string name = rel + " stroke " + std::to_string(k);
+      const std::string where = name + " (" + std::to_string(all[k].samples.size()) + " points)";
       std::string why;
       const bool bad_input = degenerate(all[k], why);
       FitResult r;
@@ -238,7 +246,9 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
       // A miss is never silent: the result says so in its warnings.
       EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance || warns(r, "misses the tolerance"), "silent miss"))
           << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " without a warning";
-      if (within_tolerance) {
+      if (kKnownMisses.contains(name)) {
+        std::printf("[ known    ] %s: max_dev / tolerance %.3f (a known miss)\n", where.c_str(), ratio);
+      } else {
         EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance), "max_dev > tolerance"))
             << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
       }
@@ -267,18 +277,9 @@ void fitDataSet(const DataSet& set, bool within_tolerance) {
 }
 
 // Every stroke fits without an exception (degenerate ones with StrokeError only), gives
-// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6), closed shapes close and corners are kept.
-TEST_P(FitDataTest, EveryStrokeFitsG2ClosesAndKeepsCorners) { fitDataSet(GetParam(), false); }
-
-// Disabled because the pipeline does not keep every real stroke within the default
-// tolerance yet. Measured with stage 7 (the default): 6 of 227 fitted strokes miss it
-// (by up to 1.62x): 4 pixel-quantized Omniglot strokes (mouse stairs beyond the noise
-// floor) and 2 fast $1 strokes with drawn corners (by 1.01x and 1.10x). With each part
-// pinned to its corner sample, 25 missed; fitted as one chain with free corners
-// (fitAcrossCorners, fitting/pipeline.cpp), 6 do. Every one is G2 with its segments
-// meeting, and the miss is reported. Run it with --gtest_also_run_disabled_tests for the
-// per-stroke list.
-TEST_P(FitDataTest, DISABLED_EveryStrokeWithinTolerance) { fitDataSet(GetParam(), true); }
+// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6) within the default tolerance (but the
+// known misses), closed shapes close and corners are kept.
+TEST_P(FitDataTest, EveryStrokeFitsG2WithinToleranceClosesAndKeepsCorners) { fitDataSet(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, FitDataTest, ::testing::ValuesIn(kDataSets),
                          [](const ::testing::TestParamInfo<DataSet>& info) { return std::string(info.param.name); });

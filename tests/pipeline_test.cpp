@@ -721,6 +721,45 @@ TEST(PipelineGaps, FollowsAnOutlinesUnsampledStraightEdge) {
                                 << describeFit(r);
 }
 
+// An arc drawn with a mouse: the pointer moves about a pixel per sample, its position
+// rounded to whole pixels, with hand tremor of 0.5 pixel that lasts two samples (a
+// moving average). Such noise repeats over neighbouring samples, so differences of
+// neighbours cancel much of it, and a noise floor taken from them alone leaves the
+// tolerance below the tremor: the fit then follows it with 3-4 segments (4 of these 16
+// strokes). One arc is what was drawn, and the noise floor must let the fit say so
+// without straying from the true arc or raising the tolerance far beyond the noise.
+TEST(PipelineNoise, MouseArcOnPixelsIsFittedAsAnArc) {
+  constexpr double kRadius = 120.0, kSpacing = 1.2, kTremor = 0.5;
+  constexpr int kTremorSamples = 2, kPoints = 120;
+  const Vec2 origin(10.3, 20.7);
+  Curve truth;
+  truth.pieces.push_back({LaSegment::arc(kPoints * kSpacing, origin, 0.0, 1.0 / kRadius), false});
+  // per coordinate: the tremor's deviation and the rounding's (uniform on a pixel)
+  const double sigma = std::sqrt(kTremor * kTremor + 1.0 / 12.0);
+  for (unsigned seed = 0; seed < 16; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> gauss(0.0, 1.0);
+    std::vector<Vec2> shakes(kPoints + kTremorSamples);
+    for (Vec2& v : shakes) v = {gauss(rng), gauss(rng)};
+    std::vector<Vec2> points;
+    for (int i = 0; i < kPoints; ++i) {
+      Vec2 tremor = Vec2::Zero();
+      for (int k = 0; k < kTremorSamples; ++k) tremor += shakes[i + k];
+      const Vec2 p = truth.pieces[0].segment.position(i * kSpacing) + kTremor / std::sqrt(kTremorSamples) * tremor;
+      points.emplace_back(std::round(p.x()), std::round(p.y()));
+    }
+    const FitResult r = fit(points, FitOptions{});
+    ASSERT_FALSE(r.curve.pieces.empty()) << "seed " << seed;
+    EXPECT_LE(r.curve.pieces.size(), 2u) << "seed " << seed << "\n" << describeFit(r);
+    EXPECT_LE(r.quality.max_dev, r.tolerance) << "seed " << seed;
+    EXPECT_LE(r.tolerance, 6.0 * sigma) << "seed " << seed;
+    const double diagonal = boxDiagonal(points);
+    const Dense dense = denseSamples(r.curve, kDenseStepFraction * diagonal);
+    EXPECT_LE(maxOf(distancesToCurve(truth, dense.point, diagonal, kPolylineSagitta)).first, r.tolerance)
+        << "seed " << seed;
+  }
+}
+
 // A caret drawn fast: two bowed arms meeting at a corner that falls between samples
 // (about 4.7 units apart, the nearest 1.3 to 2 units from the corner, more than the
 // tolerance), with noise of 0.1% of the diagonal. Stage 7 fits both arms as one chain
