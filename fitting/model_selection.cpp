@@ -129,12 +129,22 @@ std::optional<Edit> merge(const std::vector<LaSegment>& chain, const std::vector
 // Beside a corner (a hook left where a part was pinned to a corner sample on the other
 // side's stroke), the corner takes its turning and its neighbour in its part reaches the
 // corner; the only segment of a part stays.
+// With count 2, segments i and i + 1 go together, between their neighbours (a spike:
+// two stubs between inflections, 0 -> kappa -> 0, of which neither can go alone, for
+// the other would be left with two zero ends).
 std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
-                             const std::vector<ChainCorner>& corners, std::size_t i, bool closed) {
+                             const std::vector<ChainCorner>& corners, std::size_t i, bool closed,
+                             std::size_t count = 1) {
   const std::size_t n = chain.size();
-  if (n < (closed ? 4u : 2u)) return std::nullopt;
+  if (n < (closed ? 4u : 2u) + count - 1) return std::nullopt;
   Edit e = unedited(chain, feet, corners);
-  const Piece gone = e.pieces[i];
+  Piece gone = e.pieces[i];
+  if (count == 2) {
+    if (i == 0 || i + 2 >= n || gone.atCorner() || e.pieces[i + 1].atCorner() || e.pieces[i + 2].atCorner())
+      return std::nullopt;  // (interior only)
+    gone.kappa1 = e.pieces[i + 1].kappa1;
+    gone.turning += e.pieces[i + 1].turning;
+  }
   const bool open_end = !closed && (i == 0 || i + 1 == n);
   const bool corner_before = gone.atCorner();
   const bool corner_after = i + 1 < n ? e.pieces[i + 1].atCorner() : closed && e.pieces[0].atCorner();
@@ -155,7 +165,7 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
       free_end = signOf(p) * kNewKappaFraction * std::abs(i == 0 ? p.kappa1 : p.kappa0);
     if (signOf(gone) == signOf(p)) p.turning += gone.turning;
   } else {
-    const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
+    const std::size_t before = (i + n - 1) % n, after = (i + count) % n;
     Piece& a = e.pieces[before];
     Piece& b = e.pieces[after];
     double kappa = 0.0;
@@ -175,16 +185,17 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
     e.start = chain[1].start();
     e.theta = chain[1].theta0();
   }
-  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i));
+  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i), e.pieces.begin() + static_cast<std::ptrdiff_t>(i + count));
   for (Piece& p : e.pieces) fixZeroEnd(p);
   for (ChainFoot& f : e.feet) {
-    if (f.segment == i) {  // onto the end of the segment before or the start of the one after
+    if (f.segment >= i && f.segment < i + count) {  // onto the end of the segment before or the start of the one after
+      const double along = (static_cast<double>(f.segment - i) + f.u) / static_cast<double>(count);
       const bool to_before = corner_before || corner_after ? corner_after
-                             : closed ? f.u < 0.5
-                                      : (i + 1 == n || (i > 0 && f.u < 0.5));
-      f = to_before ? ChainFoot{(i + n - 1) % n, 1.0} : ChainFoot{(i + 1) % n, 0.0};
+                             : closed ? along < 0.5
+                                      : (i + 1 == n || (i > 0 && along < 0.5));
+      f = to_before ? ChainFoot{(i + n - 1) % n, 1.0} : ChainFoot{(i + count) % n, 0.0};
     }
-    if (f.segment > i) --f.segment;  // the erase renumbers those after i
+    if (f.segment >= i + count) f.segment -= count;  // the erase renumbers those after
   }
   return e;
 }
@@ -255,6 +266,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         double weakness;  // smaller first
         bool collapse;
         std::size_t index;
+        std::size_t count = 1;  // segments collapsed together
       };
       std::vector<Candidate> candidates;
       for (std::size_t i = 0; i < n; ++i) {
@@ -264,8 +276,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         // a hook: a short segment between a corner and the rest of its part
         const std::size_t inner = corner[i] ? i + 1 : i - 1;
         const bool hook = beside && segs[i].length() < kHookRatio * segs[inner % n].length();
-        if ((turning < options.sliver_turning && options.refine) || hook)
-          candidates.push_back({hook ? 0.0 : turning, true, i});
+        // a stub: shorter than the tolerance, so no point places it; it only turns the
+        // chain abruptly (a straight piece between inflections can end as a spike of two)
+        const bool stub = segs[i].length() < options.tolerance;
+        const bool spike = stub && i + 1 < n && segs[i].kappaStart() == 0.0 && segs[i + 1].kappaEnd() == 0.0;
+        if (spike) candidates.push_back({0.0, true, i, 2});
+        else if ((turning < options.sliver_turning && options.refine) || hook || stub)
+          candidates.push_back({hook || stub ? 0.0 : turning, true, i});
       }
       for (std::size_t j = 1; j < n && !slivers_only; ++j) {
         if (corner[j]) continue;
@@ -280,7 +297,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
         if (edits >= options.max_edits) break;
-        auto r = attempt(c.collapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed)
+        auto r = attempt(c.collapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
                                     : merge(segs, out.fit.feet, out.corners, c.index, options.max_turning));
         ++edits;
         if (!r || !keep(r->fit)) continue;

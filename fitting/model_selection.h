@@ -10,7 +10,9 @@
 //    the worst one is cut at that point's foot (an LA segment's sub-pieces are LA
 //    segments of the same alpha, so the cut itself changes nothing);
 //  - collapse: a segment that turns by almost nothing (noise across an inflection, or a
-//    sliver at a stroke's end) is removed, its neighbours meeting at one joint;
+//    sliver at a stroke's end) is removed, its neighbours meeting at one joint; so is a
+//    stub, shorter than the tolerance (no point places it: it only kinks the chain),
+//    and a spike of two stubs between inflections (0 -> kappa -> 0) goes as one;
 //  - merge: two segments whose joint is a weak curvature extremum or none at all (the
 //    curvature passes through it monotonically) become one.
 //
@@ -45,7 +47,7 @@ struct SelectionOptions {
   /// shaped (the app's editing works on them).
   double max_turning = 2.0;
   /// Slivers collapsed, splits (after Lawson's reweighting) and merges tried; false: only
-  /// hooks beside corners are collapsed (for segments chosen already).
+  /// hooks beside corners and stubs are collapsed (for segments chosen already).
   bool refine = true;
   ChainFitOptions fit;
 };

@@ -146,6 +146,35 @@ TEST(SelectChain, RemovesASliverAtACurvatureMaximum) {
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
+// A spike: at the truth's curvature minimum (0.03 -> 0.01 -> 0.03), two stubs far
+// shorter than the tolerance, 0 -> 2 -> 0, between neighbours ending at zero curvature.
+// No point places them; they only kink the chain. Neither can go alone (the other would
+// keep two zero ends), so both are collapsed together: two segments, no stub, within the
+// tolerance, and within the selection alone (refine off), as the fit across corners
+// runs it.
+TEST(SelectChain, CollapsesASpikeOfTwoStubs) {
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.2, 0.03, {{-1.0, 80.0, 0.01}, {1.0, 80.0, 0.03}});
+  std::vector<LaSegment> start = {LaSegment(-1.0, 80.0, truth[0].start(), truth[0].theta0(), 0.03, 0.0)};
+  appendChain(start, start.back().end(), start.back().theta(80.0), 0.0, {{-1.0, 0.02, 2.0}, {-1.0, 0.02, 0.0}, {-1.0, 80.0, 0.03}});
+  const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
+  for (const bool refine : {true, false}) {
+    SCOPED_TRACE(refine ? "refine" : "hooks and stubs only");
+    SelectionOptions options;
+    options.tolerance = kTolerance;
+    options.refine = refine;
+    SelectionOptions no_edits = options;
+    no_edits.max_edits = 0;
+    const ChainFitResult plain = selectChain(start, points, {}, no_edits).fit;
+    ASSERT_EQ(plain.segments.size(), 4u);
+    ASSERT_LT(plain.segments[1].length() + plain.segments[2].length(), kTolerance) << "the first fit grew the spike";
+    const SelectionResult r = selectChain(start, points, {}, options);
+    EXPECT_GE(r.collapses, 1);
+    EXPECT_EQ(r.fit.segments.size(), 2u);
+    for (const LaSegment& s : r.fit.segments) EXPECT_GE(s.length(), kTolerance);
+    EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+  }
+}
+
 // The corner chains' checks: one corner, at sample kCornerPoint, with at least one
 // segment on either side, where the truth's corner is (within the tolerance) and still a
 // corner (the tangent turns by the truth's turn there); the chain within the tolerance.
