@@ -97,13 +97,14 @@ T log1pOverX(const T& x) {
   return log1p(x) / x;
 }
 
-enum class ZeroEnd { kNone, kStart, kEnd };
+// Which ends of a segment have zero curvature (both: a straight line).
+enum class ZeroEnd { kNone, kStart, kEnd, kBoth };
 
 // The law of one segment: alpha, log|kappa| at both ends (unused at a zero end), length
-// and turning direction.
+// and turning direction. A line has only its length.
 struct Law {
   double alpha = -1.0, y0 = 0.0, y1 = 0.0, length = 1.0, sign = 1.0;
-  double log_turning = 0.0;  // log of |total turning| (the unknown that sets the length)
+  double log_turning = 0.0;  // log of |total turning| (the unknown that sets the length; a line's: log length)
   ZeroEnd zero = ZeroEnd::kNone;
 };
 
@@ -128,7 +129,7 @@ class LawEvaluator {
       const T l = y0 - y1;
       big_r_ = l * expm1OverX(alpha * l);
       kappa_ref_ = sign * exp(y0);
-    } else {
+    } else if (zero != ZeroEnd::kBoth) {
       e_ = 1.0 - 1.0 / alpha;
       kappa_ref_ = sign * exp(zero == ZeroEnd::kEnd ? y0 : y1);
     }
@@ -145,6 +146,7 @@ class LawEvaluator {
       }
       case ZeroEnd::kEnd: return u >= 1.0 ? turning_ref_ / e_ : -turning_ref_ * expm1(e_ * std::log1p(-u)) / e_;
       case ZeroEnd::kStart: return u <= 0.0 ? T(0.0) : turning_ref_ * exp(e_ * std::log(u)) / e_;
+      case ZeroEnd::kBoth: return T(0.0);
     }
     return T(0.0);
   }
@@ -154,6 +156,7 @@ class LawEvaluator {
       case ZeroEnd::kNone: return kappa_ref_ * exp(-big_r_ * u * log1pOverX(alpha_ * big_r_ * u));
       case ZeroEnd::kEnd: return u >= 1.0 ? T(0.0) : kappa_ref_ * exp(-std::log1p(-u) / alpha_);
       case ZeroEnd::kStart: return u <= 0.0 ? T(0.0) : kappa_ref_ * exp(-std::log(u) / alpha_);
+      case ZeroEnd::kBoth: return T(0.0);
     }
     return T(0.0);
   }
@@ -177,6 +180,12 @@ T unitTurning(const T& alpha, const T& y0, const T& y1, ZeroEnd zero) {
 // where v is small against the other end: there kappa behaves like a power of the
 // distance to a (virtual) zero of v, whose derivatives blow up.
 std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
+  const int widths = static_cast<int>(std::ceil(1.0 / rule.width));
+  if (law.zero == ZeroEnd::kBoth) {  // a line: positions are exact on any panels
+    std::vector<double> uniform;
+    for (int k = 0; k <= widths; ++k) uniform.push_back(static_cast<double>(k) / widths);
+    return uniform;
+  }
   double v0 = 1.0, v1 = 1.0, turning;
   const double e = 1.0 - 1.0 / law.alpha;
   if (law.zero == ZeroEnd::kNone) {
@@ -195,7 +204,6 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
                    : law.zero == ZeroEnd::kStart ? std::pow(f, 1.0 / e)
                                                  : 1.0 - std::pow(1.0 - f, 1.0 / e));
   }
-  const int widths = static_cast<int>(std::ceil(1.0 / rule.width));
   for (int k = 1; k < widths; ++k) grid.push_back(static_cast<double>(k) / widths);
   // kappa ~ v^(-1/alpha) changes faster than v for |alpha| < 1: below |alpha| = 1/2, v
   // is graded finer, so that kappa changes by at most the grading squared per panel
@@ -295,7 +303,7 @@ void buildPanels(const Law& law, Panels<T>& p) {
     // the end curvatures at a fixed turning.
     Jet log_turning(law.log_turning);
     log_turning.v[kLogTurning] = 1.0;
-    length = exp(log_turning) / unitTurning(alpha, y0, y1, law.zero);
+    length = law.zero == ZeroEnd::kBoth ? exp(log_turning) : exp(log_turning) / unitTurning(alpha, y0, y1, law.zero);
   }
   p.length = length;
   const LawEvaluator<T> evaluator(alpha, y0, y1, length, law.sign, law.zero);
@@ -496,7 +504,7 @@ struct Layout {
   std::vector<int> kappa_start, kappa_end;
   std::vector<int> corner_turn;   // per joint 0..n: the tangent's turn at a corner, else -1
   std::vector<bool> corner;       // per segment: it starts at a corner
-  std::vector<int> turning, alpha;  // per segment: log |total turning| (sets the length), alpha
+  std::vector<int> turning, alpha;  // per segment: log |total turning| (sets the length; a line's: log length), alpha (a line's: -1)
   std::vector<ZeroEnd> zero;      // per segment
   std::vector<double> turn_sign;  // per segment
   Eigen::VectorXd lower, upper;   // bounds of every unknown
@@ -511,11 +519,15 @@ struct Layout {
   int constraints() const { return closed ? (seamCorner() ? 2 : 3) : fix_end ? 2 : 0; }
   Law law(const Eigen::VectorXd& x, std::size_t i) const {
     Law l;
-    l.alpha = x[alpha[i]];
     l.zero = zero[i];
+    l.log_turning = x[turning[i]];
+    if (l.zero == ZeroEnd::kBoth) {
+      l.length = std::exp(l.log_turning);
+      return l;
+    }
+    l.alpha = x[alpha[i]];
     l.y0 = l.zero == ZeroEnd::kStart ? 0.0 : std::log(std::abs(x[kappa_start[i]]));
     l.y1 = l.zero == ZeroEnd::kEnd ? 0.0 : std::log(std::abs(x[kappa_end[i]]));
-    l.log_turning = x[turning[i]];
     l.length = std::exp(l.log_turning) / unitTurning(l.alpha, l.y0, l.y1, l.zero);
     l.sign = turn_sign[i];
     return l;
@@ -569,8 +581,8 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
     buildPanels(law, p);
     if (derivatives) {
       buildPanels(law, m.jets[i]);
-      const int k0 = law.zero == ZeroEnd::kStart ? -1 : layout.kappa_start[i];
-      const int k1 = law.zero == ZeroEnd::kEnd ? -1 : layout.kappa_end[i];
+      const int k0 = law.zero == ZeroEnd::kStart || law.zero == ZeroEnd::kBoth ? -1 : layout.kappa_start[i];
+      const int k1 = law.zero == ZeroEnd::kEnd || law.zero == ZeroEnd::kBoth ? -1 : layout.kappa_end[i];
       m.columns[i] = {layout.alpha[i], k0, k1, layout.turning[i]};
       // d log|kappa| / d kappa = 1 / kappa
       m.factors[i] = {1.0, k0 < 0 ? 0.0 : 1.0 / x[k0], k1 < 0 ? 0.0 : 1.0 / x[k1], 1.0};
@@ -664,7 +676,8 @@ class ChainProblem {
           layout_.fix_end ? 0.0 : weights_[last] * frames[last].tangent.dot(frames[last].point - points_[last]);
     }
     for (std::size_t i = 0; i < layout_.segments; ++i)
-      r[static_cast<Eigen::Index>(n_points + ends() + i)] = layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
+      r[static_cast<Eigen::Index>(n_points + ends() + i)] =
+          layout_.alpha[i] < 0 ? 0.0 : layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
     c.resize(layout_.constraints());
     const std::size_t n = layout_.segments;
     if (layout_.seamCorner()) {
@@ -705,7 +718,7 @@ class ChainProblem {
       if (!layout_.fix_end) add(static_cast<Eigen::Index>(n_points + 1), last, frames[last].tangent);
     }
     for (std::size_t i = 0; i < layout_.segments; ++i)
-      j(static_cast<Eigen::Index>(n_points + ends() + i), layout_.alpha[i]) = layout_.prior_weight;
+      if (layout_.alpha[i] >= 0) j(static_cast<Eigen::Index>(n_points + ends() + i), layout_.alpha[i]) = layout_.prior_weight;
     cj = constraintJacobian(layout_, m);
   }
 
@@ -875,7 +888,7 @@ Eigen::VectorXd alphaStandardErrors(const Layout& layout, const ChainProblem& pr
   const Eigen::MatrixXd covariance = variance * z * reduced.completeOrthogonalDecomposition().pseudoInverse() * z.transpose();
   Eigen::VectorXd se(static_cast<Eigen::Index>(layout.segments));
   for (std::size_t i = 0; i < layout.segments; ++i) {
-    const double v = covariance(layout.alpha[i], layout.alpha[i]);
+    const double v = layout.alpha[i] < 0 ? 0.0 : covariance(layout.alpha[i], layout.alpha[i]);  // (a line has none)
     se[static_cast<Eigen::Index>(i)] = v > 0.0 ? std::sqrt(v) : INFINITY;
   }
   return se;
@@ -992,19 +1005,27 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     layout.kappa_start.push_back(kappa_unknown[at_start[i]]);
     layout.kappa_end.push_back(kappa_unknown[at_end[i]]);
     const bool zero0 = layout.kappa_start[i] < 0, zero1 = layout.kappa_end[i] < 0;
-    if (zero0 && zero1) return refuse("segment " + std::to_string(i) + " is straight");
-    layout.zero.push_back(zero0 ? ZeroEnd::kStart : zero1 ? ZeroEnd::kEnd : ZeroEnd::kNone);
-    layout.turn_sign.push_back((zero0 ? kappa[at_end[i]] : kappa[at_start[i]]) < 0.0 ? -1.0 : 1.0);
-    const double log_turning = std::log(std::abs(initial[i].turning()));
-    layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
-    const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
-    // (the bounds and the cap are widened to a start's alpha beyond them: clamping it
-    // would change the chain before the fit, as a raised curvature floor would, see
-    // above; stage 4 gives inflection pieces alphas below -3)
-    const double lo = std::min(options.min_alpha, a);
-    const double cap = std::max(kInflectionAlphaCap, std::min(a, 0.0));
-    const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : std::max(options.max_alpha, a);
-    layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
+    if (zero0 && zero1) {
+      // A line, its length the only unknown (a segment between two zero joints is one:
+      // no LA segment has two zero ends).
+      layout.zero.push_back(ZeroEnd::kBoth);
+      layout.turn_sign.push_back(1.0);
+      layout.turning.push_back(add(std::log(initial[i].length() / scale), -INFINITY, INFINITY, kMaxLogTurningStep));
+      layout.alpha.push_back(-1);
+    } else {
+      layout.zero.push_back(zero0 ? ZeroEnd::kStart : zero1 ? ZeroEnd::kEnd : ZeroEnd::kNone);
+      layout.turn_sign.push_back((zero0 ? kappa[at_end[i]] : kappa[at_start[i]]) < 0.0 ? -1.0 : 1.0);
+      const double log_turning = std::log(std::abs(initial[i].turning()));
+      layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
+      const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
+      // (the bounds and the cap are widened to a start's alpha beyond them: clamping it
+      // would change the chain before the fit, as a raised curvature floor would, see
+      // above; stage 4 gives inflection pieces alphas below -3)
+      const double lo = std::min(options.min_alpha, a);
+      const double cap = std::max(kInflectionAlphaCap, std::min(a, 0.0));
+      const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : std::max(options.max_alpha, a);
+      layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
+    }
     turning += initial[i].turning();
     if (i + 1 < n && corner[i + 1]) {
       const double turn = turnBetween(initial[i], initial[i + 1]);
@@ -1102,9 +1123,13 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     double theta = mm.angle[0];
     for (std::size_t i = 0; i < n; ++i) {
       const Law& law = mm.laws[i];
-      const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : xx[layout.kappa_start[i]] / scale;
-      const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : xx[layout.kappa_end[i]] / scale;
-      chain.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
+      if (law.zero == ZeroEnd::kBoth) {
+        chain.push_back(LaSegment::arc(law.length * scale, start, theta, 0.0));
+      } else {
+        const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : xx[layout.kappa_start[i]] / scale;
+        const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : xx[layout.kappa_end[i]] / scale;
+        chain.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
+      }
       start = chain.back().end();
       const int turn = layout.corner_turn[i + 1];
       theta = chain.back().theta(chain.back().length()) + (turn >= 0 ? xx[turn] : 0.0);

@@ -125,8 +125,9 @@ struct ChainFitResult {
 };
 
 /// Fits `initial` (an open or closed G2 chain of LA segments, every one with a finite
-/// alpha or a circular arc with nonzero curvature; consecutive segments meeting in
-/// position, tangent and curvature) to `points`, given in order along it (a closed
+/// alpha, a circular arc with nonzero curvature or a straight line, whose neighbours
+/// have zero curvature where they meet it; consecutive segments meeting in position,
+/// tangent and curvature) to `points`, given in order along it (a closed
 /// chain's points start anywhere). `feet`, if not empty, are the points' feet on
 /// `initial` (one per point); otherwise they are found from scratch. A chain it cannot
 /// take comes back unchanged with kBadInput. A fix_end or closed chain comes back closed

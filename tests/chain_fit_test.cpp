@@ -285,15 +285,50 @@ TEST(ChainFit, ProjectionMatchesDenseDistance) {
 }
 
 // What it cannot take comes back unchanged with kBadInput.
-TEST(ChainFit, RefusesStraightSegmentsAndNoChain) {
-  const std::vector<LaSegment> line = {LaSegment::arc(10.0, {0, 0}, 0.0, 0.0)};
+TEST(ChainFit, RefusesNoChain) {
   const std::vector<Vec2> points = {{0, 0}, {5, 1}, {9, 4}};
-  const ChainFitResult r = fitChain(line, points, {});
-  EXPECT_EQ(r.report.status, SolveStatus::kBadInput);
-  EXPECT_FALSE(r.improved);
-  ASSERT_EQ(r.segments.size(), 1u);
-  EXPECT_EQ(r.segments[0].length(), 10.0);
   EXPECT_EQ(fitChain({}, points, {}).report.status, SolveStatus::kBadInput);
+}
+
+// A straight line between two inflections (curvature 0.02 -> 0, a 50-unit line, 0 ->
+// -0.03), noise of 0.1% of the size, started with wrong alphas, lengths and curvatures:
+// the line is fitted as a line (its length the only unknown), the chain G2 with both
+// joints at zero curvature, on the points as well as the truth. A line alone is fitted
+// too.
+TEST(ChainFit, FitsAStraightLineBetweenInflections) {
+  std::vector<LaSegment> truth = buildChain({10, 20}, -0.4, 0.02, {{-1.0, 60.0, 0.0}});
+  truth.push_back(LaSegment::arc(50.0, truth.back().end(), truth.back().theta(60.0), 0.0));
+  test::appendChain(truth, truth.back().end(), truth.back().theta0(), 0.0, {{-1.0, 60.0, -0.03}});
+  const double sigma = 1e-3 * boundingBoxDiagonal(sampleChain(truth, 50, 0.0, 0));
+  const std::vector<Vec2> points = sampleChain(truth, 80, sigma, 7);
+  std::vector<LaSegment> start = buildChain({10.4, 19.7}, -0.38, 0.022, {{-0.6, 57.0, 0.0}});
+  start.push_back(LaSegment::arc(54.0, start.back().end(), start.back().theta(57.0), 0.0));
+  test::appendChain(start, start.back().end(), start.back().theta0(), 0.0, {{-1.5, 64.0, -0.027}});
+  ChainFitOptions options;
+  options.max_iterations = 100;
+  const ChainFitResult r = fitChain(start, points, {}, options);
+  ChainFitOptions unfitted;
+  unfitted.max_iterations = 0;
+  const ChainFitResult at_truth = fitChain(truth, points, {}, unfitted);
+  ASSERT_TRUE(r.report.usable()) << r.report.message;
+  ASSERT_EQ(r.segments.size(), 3u);
+  expectG2(r.segments);
+  const LaSegment& line = r.segments[1];
+  EXPECT_EQ(line.kappaStart(), 0.0);
+  EXPECT_EQ(line.kappaEnd(), 0.0);
+  EXPECT_EQ(line.turning(), 0.0);
+  EXPECT_EQ(r.segments[0].kappaEnd(), 0.0);
+  EXPECT_EQ(r.segments[2].kappaStart(), 0.0);
+  EXPECT_LT(r.ssr, 1.001 * at_truth.ssr) << "sigma " << sigma;
+  EXPECT_LT(maxDistance(r.segments, points), 5.0 * sigma);
+
+  const std::vector<LaSegment> alone = {LaSegment::arc(10.0, {0, 0}, 0.0, 0.0)};
+  const std::vector<Vec2> on_a_line = {{0, 0}, {5, 1.02}, {10, 1.98}, {15, 3.01}, {20, 4}};
+  const ChainFitResult l = fitChain(alone, on_a_line, {}, options);
+  ASSERT_TRUE(l.report.usable()) << l.report.message;
+  ASSERT_EQ(l.segments.size(), 1u);
+  EXPECT_EQ(l.segments[0].turning(), 0.0);
+  EXPECT_LT(maxDistance(l.segments, on_a_line), 0.03);
 }
 
 // Many points (2,000, noise 0.1% of the size) fitted on 250: binned (the noise given,
