@@ -586,6 +586,11 @@ INSTANTIATE_TEST_SUITE_P(Kinds, ConstructionKindTest,
 
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
+  // CTest runs each test in a process of its own, several at once: each gets its own
+  // home, so no two share the autosave file and its crash marker (a test saw another's
+  // window remove the marker it had just left).
+  const QTemporaryDir home;
+  qputenv("HOME", home.path().toLocal8Bit());
   QApplication app(argc, argv);
   QStandardPaths::setTestModeEnabled(true);  // autosave and settings go to a test location
   ::testing::InitGoogleTest(&argc, argv);
