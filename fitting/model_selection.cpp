@@ -14,7 +14,9 @@ namespace {
 struct Piece {
   double alpha, kappa0, kappa1, turning;
   double corner_turn = NAN;
+  double line_length = NAN;  // a straight line's (it has no turning to set it)
   bool atCorner() const { return !std::isnan(corner_turn); }
+  bool line() const { return !std::isnan(line_length); }
 };
 
 // Alpha for a segment that gets a zero-curvature end (DESIGN.md section 2: alpha < 0).
@@ -30,10 +32,14 @@ constexpr double kHookRatio = 0.2;
 // A split is kept if it brings the worst point within the tolerance or this factor closer.
 constexpr double kMarkedGain = 0.99;
 
+bool isLine(const LaSegment& s) { return s.kappaStart() == 0.0 && s.kappaEnd() == 0.0; }
+
 std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners) {
   std::vector<Piece> out;
-  for (const LaSegment& s : chain)
+  for (const LaSegment& s : chain) {
     out.push_back({std::isfinite(s.alpha()) ? s.alpha() : kZeroEndAlpha, s.kappaStart(), s.kappaEnd(), s.turning()});
+    if (isLine(s)) out.back().line_length = s.length();
+  }
   for (const ChainCorner& c : corners)
     out[c.joint].corner_turn = c.joint == 0 ? 0.0 : turnBetween(chain[c.joint - 1], chain[c.joint]);
   return out;
@@ -62,7 +68,8 @@ std::optional<std::vector<LaSegment>> rebuild(Vec2 start, double theta, const st
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const Piece& p = pieces[i];
       if (i > 0 && p.atCorner()) theta += p.corner_turn;
-      chain.push_back(LaSegment::withTurning(p.alpha, p.turning, start, theta, p.kappa0, p.kappa1));
+      chain.push_back(p.line() ? LaSegment::arc(p.line_length, start, theta, 0.0)
+                               : LaSegment::withTurning(p.alpha, p.turning, start, theta, p.kappa0, p.kappa1));
       start = chain.back().end();
       theta = chain.back().theta(chain.back().length());
     }
@@ -86,6 +93,65 @@ Edit unedited(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>&
   return {piecesOf(chain, corners), chain.front().start(), chain.front().theta0(), feet};
 }
 
+// The feet of a segment i cut at fraction u onto its two parts (and those after, one on).
+void splitFeet(std::vector<ChainFoot>& feet, std::size_t i, double u) {
+  for (ChainFoot& f : feet) {
+    if (f.segment > i) ++f.segment;
+    else if (f.segment == i && f.u >= u) f = {i + 1, (f.u - u) / (1.0 - u)};
+    else if (f.segment == i) f.u /= u;
+  }
+}
+
+// Bends line i by curvature `bend` (towards the points it misses): into one arc where
+// its tangent is free at both ends (a chain's end, a corner), else into two parts
+// meeting at that curvature at fraction u (a line's neighbours meet it at zero
+// curvature, and an LA segment has at most one zero end). The bent line starts turned
+// back by half its turning where it can, so that it ends near the line's end.
+std::optional<Edit> bendLine(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+                             const std::vector<ChainCorner>& corners, std::size_t i, double u, double bend,
+                             bool closed) {
+  if (bend == 0.0) return std::nullopt;
+  Edit e = unedited(chain, feet, corners);
+  const std::size_t n = chain.size();
+  const double length = chain[i].length(), half = 0.5 * bend * length;
+  const bool free_start = e.pieces[i].atCorner() || (i == 0 && !closed);
+  const bool free_end = i + 1 < n ? e.pieces[i + 1].atCorner() : !closed;
+  if (i == 0) e.theta -= half;
+  else if (free_start) e.pieces[i].corner_turn -= half;
+  if (i + 1 < n && free_end) e.pieces[i + 1].corner_turn -= half;
+  if (free_start && free_end) {
+    e.pieces[i] = {kZeroEndAlpha, bend, bend, bend * length, e.pieces[i].corner_turn};
+    return e;
+  }
+  e.pieces[i] = {kZeroEndAlpha, bend, bend, bend * u * length, e.pieces[i].corner_turn};
+  e.pieces.insert(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                  Piece{kZeroEndAlpha, bend, bend, bend * (1.0 - u) * length});
+  splitFeet(e.feet, i, u);
+  return e;
+}
+
+// Replaces segments i .. i + count - 1 (nearly straight, between zero-curvature joints
+// or the chain's ends) by one line of their length, along the first one's start
+// tangent. Nullopt across a corner.
+std::optional<Edit> straighten(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+                               const std::vector<ChainCorner>& corners, std::size_t i, std::size_t count) {
+  Edit e = unedited(chain, feet, corners);
+  std::vector<double> offset = {0.0};  // of each replaced segment along the line
+  for (std::size_t k = i; k < i + count; ++k) {
+    if (k > i && e.pieces[k].atCorner()) return std::nullopt;
+    offset.push_back(offset.back() + chain[k].length());
+  }
+  const double length = offset.back();
+  e.pieces[i] = {kZeroEndAlpha, 0.0, 0.0, 0.0, e.pieces[i].corner_turn, length};
+  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                 e.pieces.begin() + static_cast<std::ptrdiff_t>(i + count));
+  for (ChainFoot& f : e.feet) {
+    if (f.segment >= i + count) f.segment -= count - 1;
+    else if (f.segment >= i) f = {i, (offset[f.segment - i] + f.u * chain[f.segment].length()) / length};
+  }
+  return e;
+}
+
 // Cuts segment i at fraction u (its two parts: the same law).
 Edit split(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
            const std::vector<ChainCorner>& corners, std::size_t i, double u) {
@@ -95,11 +161,7 @@ Edit split(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& fe
   const Piece old = e.pieces[i];
   e.pieces[i] = {old.alpha, old.kappa0, kappa, turn, old.corner_turn};
   e.pieces.insert(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1, Piece{old.alpha, kappa, old.kappa1, old.turning - turn});
-  for (ChainFoot& f : e.feet) {
-    if (f.segment > i) ++f.segment;
-    else if (f.segment == i && f.u >= u) f = {i + 1, (f.u - u) / (1.0 - u)};
-    else if (f.segment == i) f.u /= u;
-  }
+  splitFeet(e.feet, i, u);
   return e;
 }
 
@@ -262,11 +324,12 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       std::vector<bool> corner(n + 1, false);  // (joint n: the end, or a closed chain's seam again)
       for (const ChainCorner& c : out.corners) corner[c.joint] = true;
       corner[n] = closed && corner[0];
+      enum class Kind { kCollapse, kMerge, kStraighten };
       struct Candidate {
         double weakness;  // smaller first
-        bool collapse;
+        Kind kind;
         std::size_t index;
-        std::size_t count = 1;  // segments collapsed together
+        std::size_t count = 1;  // segments collapsed or straightened together
       };
       std::vector<Candidate> candidates;
       for (std::size_t i = 0; i < n; ++i) {
@@ -280,10 +343,24 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         // chain abruptly (a straight piece between inflections can end as a spike of two)
         const bool stub = segs[i].length() < options.tolerance;
         const bool spike = stub && i + 1 < n && segs[i].kappaStart() == 0.0 && segs[i + 1].kappaEnd() == 0.0;
-        if (spike) candidates.push_back({0.0, true, i, 2});
+        if (spike) candidates.push_back({0.0, Kind::kCollapse, i, 2});
         else if ((turning < options.sliver_turning && options.refine) || hook || stub)
-          candidates.push_back({hook || stub ? 0.0 : turning, true, i});
+          candidates.push_back({hook || stub ? 0.0 : turning, Kind::kCollapse, i});
       }
+      // Nearly straight runs of one or two segments between zero-curvature joints or the
+      // chain's ends: an LA segment has at most one zero end, so the solver can only
+      // approach a line there (a segment and a stub, or two flat ones). (Not beside a
+      // corner: a line runs on past a rounded tip.)
+      auto free = [&](std::size_t joint) { return !corner[joint] && !closed && (joint == 0 || joint == n); };
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t count = 1; count <= 2 && i + count <= n; ++count) {
+          const LaSegment& first = segs[i];
+          const LaSegment& last = segs[i + count - 1];
+          if ((count == 1 && isLine(first)) || (count == 2 && corner[i + 1])) continue;
+          if (!(first.kappaStart() == 0.0 || free(i)) || !(last.kappaEnd() == 0.0 || free(i + count))) continue;
+          const double turning = std::abs(first.turning()) + (count == 2 ? std::abs(last.turning()) : 0.0);
+          if (turning < options.straight_turning) candidates.push_back({turning, Kind::kStraighten, i, count});
+        }
       for (std::size_t j = 1; j < n && !slivers_only; ++j) {
         if (corner[j]) continue;
         const double k0 = std::abs(segs[j - 1].kappaStart()), kj = std::abs(segs[j].kappaStart());
@@ -291,18 +368,21 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         if (kj == 0.0) continue;
         const bool monotone = (k0 - kj) * (kj - k1) > 0.0;
         const double change = std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj;
-        if (monotone || change < options.weak_extremum) candidates.push_back({1.0 + (monotone ? 0.0 : change), false, j});
+        if (monotone || change < options.weak_extremum)
+          candidates.push_back({1.0 + (monotone ? 0.0 : change), Kind::kMerge, j});
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
         if (edits >= options.max_edits) break;
-        auto r = attempt(c.collapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
-                                    : merge(segs, out.fit.feet, out.corners, c.index, options.max_turning));
+        auto r = attempt(c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
+                         : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
+                                                   : straighten(segs, out.fit.feet, out.corners, c.index, c.count));
         ++edits;
-        if (!r || !keep(r->fit)) continue;
+        // (a line only within the tolerance: bent again, it is a crude start for a split)
+        if (!r || !keep(r->fit) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         take(std::move(*r));
-        ++(c.collapse ? out.collapses : out.merges);
+        ++(c.kind == Kind::kCollapse ? out.collapses : c.kind == Kind::kMerge ? out.merges : out.straightenings);
         changed = true;
         break;
       }
@@ -331,8 +411,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   auto splitAtWorst = [&](const ChainFitResult& from) {
     const std::size_t worst = std::max_element(from.distance.begin(), from.distance.end()) - from.distance.begin();
     const ChainFoot at = from.feet[worst];
+    // (a line bends towards the worst point: the arc through its ends with that sagitta)
+    const LaSegment& s = from.segments[at.segment];
+    const double side = cross(s.tangent(at.u * s.length()), points[worst] - s.position(at.u * s.length()));
+    const double bend = 8.0 * side / (s.length() * s.length());
+    const double u = std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin);
     ++edits;
-    return attempt(split(from.segments, from.feet, out.corners, at.segment, std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin)));
+    return attempt(isLine(s) ? bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed)
+                             : split(from.segments, from.feet, out.corners, at.segment, u));
   };
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
   auto helps = [&](const std::optional<Attempt>& r) {

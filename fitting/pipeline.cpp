@@ -69,8 +69,6 @@ constexpr double kStrayWarning = 2.0;
 // A part's curve is measured for straying (fitStroke's alternative starts) where it is
 // longer than the part's polyline by this factor.
 constexpr double kStrayLength = 1.02;
-// Turning (radians) of the arc a straight part enters the fit across corners as.
-constexpr double kFlatTurning = 1e-6;
 // A closed part keeps at least this many pieces (each turns less than pi).
 constexpr std::size_t kMinClosedPieces = 3;
 // Resolution of the deviations that decide those splits (relative to the diagonal;
@@ -1038,15 +1036,6 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
   }
 }
 
-// A straight part's line as the chain fit takes it (it fits no straight segment): a
-// circular arc turning by kFlatTurning towards the side its points are on.
-LaSegment bentLine(const LaSegment& line, const std::vector<Vec2>& points) {
-  double side = 0.0;
-  for (const Vec2& p : points) side += cross(line.tangent(0.0), p - line.start());
-  const double turning = std::copysign(kFlatTurning, side);
-  return LaSegment::arc(line.length(), line.start(), line.theta0() - 0.5 * turning, turning / line.length());
-}
-
 // Stage 7 across corners. Each part's chain was fitted with its ends pinned to the
 // corner samples, but a corner falls between samples, and a drawn one is rounded: the
 // sample is seldom where the two sides' curves meet, and the sides bend to reach it.
@@ -1055,9 +1044,8 @@ LaSegment bentLine(const LaSegment& line, const std::vector<Vec2>& points) {
 // corner where the sides meet; where that misses the tolerance, also with each corner's
 // point held at the corner (the tip of a rounded corner), starting from the first try's
 // chain, the better kept. Where the curve misses, the segments are chosen again too
-// (selectChain; else only hooks beside corners are collapsed). A straight part enters
-// as a nearly straight arc and leaves as the line between its new ends (unless the
-// selection split it). Kept where it brings the curve closer to the points, counting the
+// (selectChain; else only hooks beside corners are collapsed). A straight part stays a
+// line (unless the selection bent and split it). Kept where it brings the curve closer to the points, counting the
 // stray, or keeps it within the tolerance. True if it changed the chains; false where a
 // part has no G2 chain.
 bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed, double tol,
@@ -1076,7 +1064,7 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     first_point.push_back(points.empty() ? 0 : points.size() - 1);  // (the corner is both parts')
     if (parts[k].starts_at_corner) co.corners.push_back({chain.size(), first_point.back()});
     if (fit.spline) chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
-    else chain.push_back(bentLine(fit.segments.front(), parts[k].points));
+    else chain.push_back(fit.segments.front());  // a line
     points.insert(points.end(), parts[k].points.begin() + (points.empty() ? 0 : 1), parts[k].points.end());
   }
   if (closed) points.pop_back();  // the first corner again
@@ -1125,12 +1113,7 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
                                                  : ChainFoot{f.segment - s0, f.u});
         fit.max_dev = std::max(fit.max_dev, joint.distance[at]);
       }
-      const bool straight = !fit.spline && count == 1;
-      if (straight) {
-        const Vec2 a = fit.segments.front().start(), b = fit.segments.front().end();
-        fit.segments = {LaSegment::arc((b - a).norm(), a, angleOf(b - a), 0.0)};
-        fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
-      }
+      const bool straight = !fit.spline && count == 1;  // (still a line)
       fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
       worst = std::max({worst, fit.max_dev, fit.stray});
       fit.warnings.clear();  // (of the stages whose chain this replaces)

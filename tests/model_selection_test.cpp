@@ -175,6 +175,51 @@ TEST(SelectChain, CollapsesASpikeOfTwoStubs) {
   }
 }
 
+// A straight line between two inflections (0.02 -> 0, a 100-unit line, 0 -> -0.02),
+// started with the line as two flat LA segments (0 -> 0.0005 -> 0, as the solver
+// leaves a line it cannot fit): they become one line, its neighbours meeting it at zero
+// curvature, three segments within the tolerance. The merge cannot do it (no LA
+// segment has two zero ends).
+TEST(SelectChain, StraightensTwoFlatSegmentsIntoALine) {
+  std::vector<LaSegment> truth = buildChain({0, 0}, 0.2, 0.02, {{-1.0, 80.0, 0.0}});
+  truth.push_back(LaSegment::arc(100.0, truth.back().end(), truth.back().theta(80.0), 0.0));
+  appendChain(truth, truth.back().end(), truth.back().theta0(), 0.0, {{-1.0, 80.0, -0.02}});
+  std::vector<LaSegment> start = {truth[0]};
+  appendChain(start, truth[0].end(), truth[0].theta(80.0), 0.0, {{-1.0, 50.0, 0.0005}, {-1.0, 50.0, 0.0}, {-1.0, 80.0, -0.02}});
+  const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
+  SelectionOptions options;
+  options.tolerance = kTolerance;
+  const SelectionResult r = selectChain(start, points, {}, options);
+  EXPECT_EQ(r.straightenings, 1);
+  ASSERT_EQ(r.fit.segments.size(), 3u);
+  const LaSegment& line = r.fit.segments[1];
+  EXPECT_EQ(line.kappaStart(), 0.0);
+  EXPECT_EQ(line.kappaEnd(), 0.0);
+  EXPECT_EQ(line.turning(), 0.0);
+  EXPECT_NEAR(line.length(), 100.0, 5.0);
+  EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+}
+
+// A line whose points bow away from it (an arc of 150 units with a sagitta of 0.5,
+// 2.5 tolerances) is bent towards its worst point: one arc, the chain's ends being
+// free, within the tolerance. (Split, it would stay two lines, that is one line.)
+TEST(SelectChain, BendsALineThePointsBowAwayFrom) {
+  constexpr double kLength = 150.0, kSagitta = 0.5;
+  const std::vector<LaSegment> truth = {LaSegment::arc(kLength, {0, 0}, 0.3, 8.0 * kSagitta / (kLength * kLength))};
+  const std::vector<Vec2> points = sampleChain(truth, 150, kSigma, 5);
+  const std::vector<LaSegment> start = {
+      LaSegment::arc((points.back() - points.front()).norm(), points.front(), angleOf(points.back() - points.front()), 0.0)};
+  SelectionOptions options;
+  options.tolerance = kTolerance;
+  SelectionOptions no_edits = options;
+  no_edits.max_edits = 0;
+  ASSERT_GT(maxDistance(selectChain(start, points, {}, no_edits).fit.segments, points), kTolerance) << "the line fits";
+  const SelectionResult r = selectChain(start, points, {}, options);
+  ASSERT_EQ(r.fit.segments.size(), 1u);
+  EXPECT_GT(r.fit.segments[0].turning(), 0.0);
+  EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+}
+
 // The corner chains' checks: one corner, at sample kCornerPoint, with at least one
 // segment on either side, where the truth's corner is (within the tolerance) and still a
 // corner (the tangent turns by the truth's turn there); the chain within the tolerance.
