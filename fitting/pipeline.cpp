@@ -66,6 +66,9 @@ constexpr std::size_t kMinPointsToHalve = 2;
 // two points) is reported as straying: between sparse points a fair curve may leave
 // the chords by about a tolerance.
 constexpr double kStrayWarning = 2.0;
+// A part's stage 7 fit from the spline's chain that ends further than this many
+// tolerances from its points has set off astray: it is tried again from a finer start.
+constexpr double kAstrayFit = 2.0;
 // A part's curve is measured for straying (fitStroke's alternative starts) where it is
 // longer than the part's polyline by this factor.
 constexpr double kStrayLength = 1.02;
@@ -753,9 +756,11 @@ double maxDeviationOf(const std::vector<LaSegment>& segments, const std::vector<
 // the next split point (below). G2 by construction; empty if some piece has no LA
 // segment.
 std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
-                                       double min_alpha, double max_alpha) {
+                                       double min_alpha, double max_alpha, bool halve) {
   constexpr int kSteps = 16;           // per piece, for its turning and length
   constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
+  constexpr double kShotLengthRatio = 2.0;
+  constexpr int kMaxHalvings = 6;
   auto measure = [&](double t0, double t1, double& turning, double& length) {
     double prev = splineTangentAngle(spline, spline.wrap(t0));
     Vec2 p = spline.point(spline.wrap(t0));
@@ -771,107 +776,125 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
     }
   };
   auto sign = [](double v) { return v < 0.0 ? -1.0 : 1.0; };
-  std::vector<double> turning, length;
-  for (bool again = true; again;) {
-    again = false;
-    const std::size_t n = spans.size();
-    turning.assign(n, 0.0);
-    length.assign(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
-    for (std::size_t i = 0; i < n && n >= 3; ++i) {
-      const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
-      if (!has_before || !has_after) continue;
-      const double s = sign(turning[i]);
-      if (sign(turning[(i + n - 1) % n]) == s || sign(turning[(i + 1) % n]) == s) continue;
-      double best_t = 0.5 * (spans[i].t0 + spans[i].t1), best = 0.0;
-      for (int k = 1; k < kSteps; ++k) {
-        const double t = spans[i].t0 + (spans[i].t1 - spans[i].t0) * k / kSteps;
-        const double kappa = std::abs(spline.curvature(spline.wrap(t)));
-        if (kappa > best) best = kappa, best_t = t;
+  // With `halve`: a shot segment far longer or shorter than the spline between its
+  // splits has set off away from the points (its start curvature, the previous one's
+  // end, does not suit it): its span is halved (at an inflection inside if any) and the
+  // chain shot again, at most kMaxHalvings times.
+  for (int halvings = 0;; ++halvings) {
+    std::vector<double> turning, length;
+    for (bool again = true; again;) {
+      again = false;
+      const std::size_t n = spans.size();
+      turning.assign(n, 0.0);
+      length.assign(n, 0.0);
+      for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
+      for (std::size_t i = 0; i < n && n >= 3; ++i) {
+        const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
+        if (!has_before || !has_after) continue;
+        const double s = sign(turning[i]);
+        if (sign(turning[(i + n - 1) % n]) == s || sign(turning[(i + 1) % n]) == s) continue;
+        double best_t = 0.5 * (spans[i].t0 + spans[i].t1), best = 0.0;
+        for (int k = 1; k < kSteps; ++k) {
+          const double t = spans[i].t0 + (spans[i].t1 - spans[i].t0) * k / kSteps;
+          const double kappa = std::abs(spline.curvature(spline.wrap(t)));
+          if (kappa > best) best = kappa, best_t = t;
+        }
+        PieceReport second = spans[i];
+        spans[i].t1 = second.t0 = best_t;
+        spans[i].end_kind = second.start_kind = SplitKind::kExtremum;
+        spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i) + 1, second);
+        again = true;
+        break;
       }
-      PieceReport second = spans[i];
-      spans[i].t1 = second.t0 = best_t;
-      spans[i].end_kind = second.start_kind = SplitKind::kExtremum;
-      spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i) + 1, second);
-      again = true;
-      break;
     }
-  }
-  const std::size_t n = spans.size(), joints = closed ? n : n + 1;
-  std::vector<double> kappa(joints, 0.0);
-  for (std::size_t j = 0; j < joints; ++j) {
-    const bool has_before = closed || j > 0, has_after = closed || j < n;
-    const std::size_t before = (j + n - 1) % n, after = j % n;
-    if (has_before && has_after && sign(turning[before]) != sign(turning[after])) continue;  // inflection: 0
-    const std::size_t piece = has_after ? after : before;
-    const double s = sign(turning[piece]);
-    const double k = spline.curvature(spline.wrap(has_after ? spans[after].t0 : spans[before].t1));
-    const double mean = std::abs(turning[piece]) / std::max(length[piece], 1e-300);
-    kappa[j] = sign(k) == s && std::abs(k) > kSmallKappa * mean ? k : s * kSmallKappa * mean;
-  }
-  // Shoot segment by segment: each starts where the previous ended (tangent and
-  // curvature continuous), turns as the spline does between its splits, and takes the
-  // end curvature and alpha that bring its end closest to the next split point (Gauss-
-  // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
-  // then follows the spline's joints instead of drifting with its curvature errors.
-  std::vector<LaSegment> chain;
-  Vec2 start = spline.point(spline.wrap(spans.front().t0));
-  double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
-  for (std::size_t i = 0; i < n; ++i) {
-    const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
-    const bool free_end = kappa[(i + 1) % joints] != 0.0;
-    const double end_sign = sign(turning[i]);
-    const Vec2 target = spline.point(spline.wrap(spans[i].t1));
-    // unknowns: y = log|kappa_end| (when not an inflection), alpha
-    double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
-    const bool zero_end = k0 == 0.0 || !free_end;
-    const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
-    double alpha = zero_end ? -1.0 : kPolishStartAlpha;
-    auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
-      const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
-      try {
-        return LaSegment::withTurning(aa, turning[i], start, theta, k0, k1);
-      } catch (const std::invalid_argument&) {
-        return std::nullopt;
-      }
-    };
-    auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
-      const auto seg = build(yy, aa);
-      if (!seg) return std::nullopt;
-      return Vec2(seg->end() - target);
-    };
-    constexpr int kShootingSteps = 8;
-    constexpr double kStep = 1e-4;
-    for (int it = 0; it < kShootingSteps; ++it) {
-      const auto r = miss(y, alpha);
-      if (!r) break;
-      Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
-      const auto ra = miss(y, alpha + kStep);
-      if (!ra) break;
-      jac.col(1) = (*ra - *r) / kStep;
-      if (free_end) {
-        const auto ry = miss(y + kStep, alpha);
-        if (!ry) break;
-        jac.col(0) = (*ry - *r) / kStep;
-      }
-      // least-squares step, damped a little, both unknowns limited in size
-      Eigen::Matrix2d a = jac.transpose() * jac;
-      a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
-      const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
-      if (!step.allFinite()) break;
-      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), lo, hi);
-      const auto rn = miss(ny, na);
-      if (!rn || rn->norm() >= r->norm()) break;
-      y = ny;
-      alpha = na;
+    const std::size_t n = spans.size(), joints = closed ? n : n + 1;
+    std::vector<double> kappa(joints, 0.0);
+    for (std::size_t j = 0; j < joints; ++j) {
+      const bool has_before = closed || j > 0, has_after = closed || j < n;
+      const std::size_t before = (j + n - 1) % n, after = j % n;
+      if (has_before && has_after && sign(turning[before]) != sign(turning[after])) continue;  // inflection: 0
+      const std::size_t piece = has_after ? after : before;
+      const double s = sign(turning[piece]);
+      const double k = spline.curvature(spline.wrap(has_after ? spans[after].t0 : spans[before].t1));
+      const double mean = std::abs(turning[piece]) / std::max(length[piece], 1e-300);
+      kappa[j] = sign(k) == s && std::abs(k) > kSmallKappa * mean ? k : s * kSmallKappa * mean;
     }
-    const auto seg = build(y, alpha);
-    if (!seg) return {};
-    chain.push_back(*seg);
-    start = chain.back().end();
-    theta = chain.back().theta(chain.back().length());
+    // Shoot segment by segment: each starts where the previous ended (tangent and
+    // curvature continuous), turns as the spline does between its splits, and takes the
+    // end curvature and alpha that bring its end closest to the next split point (Gauss-
+    // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
+    // then follows the spline's joints instead of drifting with its curvature errors.
+    std::vector<LaSegment> chain;
+    Vec2 start = spline.point(spline.wrap(spans.front().t0));
+    double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
+    for (std::size_t i = 0; i < n; ++i) {
+      const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
+      const bool free_end = kappa[(i + 1) % joints] != 0.0;
+      const double end_sign = sign(turning[i]);
+      const Vec2 target = spline.point(spline.wrap(spans[i].t1));
+      // unknowns: y = log|kappa_end| (when not an inflection), alpha
+      double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
+      const bool zero_end = k0 == 0.0 || !free_end;
+      const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
+      double alpha = zero_end ? -1.0 : kPolishStartAlpha;
+      auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
+        const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
+        try {
+          return LaSegment::withTurning(aa, turning[i], start, theta, k0, k1);
+        } catch (const std::invalid_argument&) {
+          return std::nullopt;
+        }
+      };
+      auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
+        const auto seg = build(yy, aa);
+        if (!seg) return std::nullopt;
+        return Vec2(seg->end() - target);
+      };
+      constexpr int kShootingSteps = 8;
+      constexpr double kStep = 1e-4;
+      for (int it = 0; it < kShootingSteps; ++it) {
+        const auto r = miss(y, alpha);
+        if (!r) break;
+        Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
+        const auto ra = miss(y, alpha + kStep);
+        if (!ra) break;
+        jac.col(1) = (*ra - *r) / kStep;
+        if (free_end) {
+          const auto ry = miss(y + kStep, alpha);
+          if (!ry) break;
+          jac.col(0) = (*ry - *r) / kStep;
+        }
+        // least-squares step, damped a little, both unknowns limited in size
+        Eigen::Matrix2d a = jac.transpose() * jac;
+        a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
+        const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
+        if (!step.allFinite()) break;
+        const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), lo, hi);
+        const auto rn = miss(ny, na);
+        if (!rn || rn->norm() >= r->norm()) break;
+        y = ny;
+        alpha = na;
+      }
+      const auto seg = build(y, alpha);
+      if (!seg) return {};
+      chain.push_back(*seg);
+      start = chain.back().end();
+      theta = chain.back().theta(chain.back().length());
+    }
+
+    std::size_t astray = n;
+    for (std::size_t i = 0; i < n && astray == n; ++i)
+      if (!(chain[i].length() < kShotLengthRatio * length[i] && kShotLengthRatio * chain[i].length() > length[i])) astray = i;
+    if (!halve || astray == n || halvings >= kMaxHalvings) return chain;
+    const double t0 = spans[astray].t0, t1 = spans[astray].t1;
+    double t = halvingPoint(spline, t0, t1).t;
+    if (t < t0) t += spline.tMax() - spline.tMin();  // (wrapped past a closed spline's seam)
+    if (!(t > t0 && t < t1)) return chain;
+    PieceReport second = spans[astray];
+    spans[astray].t1 = second.t0 = t;
+    spans[astray].end_kind = second.start_kind = SplitKind::kTurning;
+    spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(astray) + 1, second);
   }
-  return chain;
 }
 
 // The piece reports of a chain stage 7 made (its segments need not be the segmentation's
@@ -948,13 +971,28 @@ void polishPart(PartFit& fit, const Part& part, double tol, double noise, double
   bool straight = false;
   for (const LaSegment& s : start) straight |= !std::isfinite(s.alpha()) && s.kappaStart() == 0.0;
   std::vector<ChainFoot> feet = fit.feet;
-  if (!fit.g2.usable() || straight || start.size() != fit.spans.size()) {
+  const bool from_spline = !fit.g2.usable() || straight || start.size() != fit.spans.size();
+  // (with `halve`, the spline's spans where a shot segment sets off astray are halved)
+  auto startFromSpline = [&](bool halve) {
     std::vector<PieceReport> spans = fit.spans;
-    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha);
+    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve);
     feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
-  }
+  };
+  if (from_spline) startFromSpline(false);
   if (start.empty()) return;
-  const SelectionResult selected = selectChain(start, part.points, feet, so);
+  SelectionResult selected = selectChain(start, part.points, feet, so);
+  if (from_spline && selected.fit.max_distance > kAstrayFit * tol) {
+    // Far outside the tolerance from the spline's chain: again from its spans halved
+    // where it set off astray, the closer kept. (Within twice the tolerance, the fit
+    // across corners usually closes the gap, and the halved start only adds segments.)
+    const std::size_t count = start.size();
+    startFromSpline(true);
+    if (!start.empty() && start.size() != count) {
+      SelectionResult again = selectChain(start, part.points, feet, so);
+      if (again.fit.report.status != SolveStatus::kBadInput && again.fit.max_distance < selected.fit.max_distance)
+        selected = std::move(again);
+    }
+  }
   const ChainFitResult& polished = selected.fit;
   if (polished.report.status == SolveStatus::kBadInput) return;
   std::vector<LaSegment> segments = polished.segments;
