@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -64,6 +65,18 @@ TEST(ChainFit, RecoversExactSegmentsOfEveryLaw) {
   }
 }
 
+// `start` fitted to `points` (up to 100 iterations: starts far off), and the truth's
+// own sum of squares on them (unfitted).
+std::pair<ChainFitResult, ChainFitResult> fitAgainstTruth(const std::vector<LaSegment>& start,
+                                                          const std::vector<LaSegment>& truth,
+                                                          const std::vector<Vec2>& points) {
+  ChainFitOptions options;
+  options.max_iterations = 100;
+  ChainFitOptions unfitted;
+  unfitted.max_iterations = 0;
+  return {fitChain(start, points, {}, options), fitChain(truth, points, {}, unfitted)};
+}
+
 // Three segments with an inflection joint, noise of 0.1% of the size (seeded), started
 // from wrong alphas (off by 0.5 to 1) and a shifted start. The fitted chain is G2 by
 // construction, keeps the inflection at zero curvature, fits the points at least as
@@ -78,12 +91,7 @@ TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
   const std::vector<Vec2> points = sampleChain(truth, 120, sigma, 42);
   const std::vector<LaSegment> start =
       buildChain({10.3, 19.8}, -0.38, 0.021, {{0.5, 57.0, 0.0055}, {-0.5, 53.0, 0.0}, {-1.0, 66.0, -0.027}});
-  ChainFitOptions options;
-  options.max_iterations = 100;  // the start is far: each alpha is off by 0.5 to 1
-  const ChainFitResult r = fitChain(start, points, {}, options);
-  ChainFitOptions unfitted;
-  unfitted.max_iterations = 0;
-  const ChainFitResult at_truth = fitChain(truth, points, {}, unfitted);
+  const auto [r, at_truth] = fitAgainstTruth(start, truth, points);  // (the start is far: each alpha is off by 0.5 to 1)
   ASSERT_TRUE(r.report.usable()) << r.report.message;
   ASSERT_EQ(r.segments.size(), 3u);
   expectG2(r.segments);
@@ -296,20 +304,13 @@ TEST(ChainFit, RefusesNoChain) {
 // joints at zero curvature, on the points as well as the truth. A line alone is fitted
 // too.
 TEST(ChainFit, FitsAStraightLineBetweenInflections) {
-  std::vector<LaSegment> truth = buildChain({10, 20}, -0.4, 0.02, {{-1.0, 60.0, 0.0}});
-  truth.push_back(LaSegment::arc(50.0, truth.back().end(), truth.back().theta(60.0), 0.0));
-  test::appendChain(truth, truth.back().end(), truth.back().theta0(), 0.0, {{-1.0, 60.0, -0.03}});
+  const std::vector<LaSegment> truth =
+      buildChain({10, 20}, -0.4, 0.02, {{-1.0, 60.0, 0.0}, {INFINITY, 50.0, 0.0}, {-1.0, 60.0, -0.03}});
   const double sigma = 1e-3 * boundingBoxDiagonal(sampleChain(truth, 50, 0.0, 0));
   const std::vector<Vec2> points = sampleChain(truth, 80, sigma, 7);
-  std::vector<LaSegment> start = buildChain({10.4, 19.7}, -0.38, 0.022, {{-0.6, 57.0, 0.0}});
-  start.push_back(LaSegment::arc(54.0, start.back().end(), start.back().theta(57.0), 0.0));
-  test::appendChain(start, start.back().end(), start.back().theta0(), 0.0, {{-1.5, 64.0, -0.027}});
-  ChainFitOptions options;
-  options.max_iterations = 100;
-  const ChainFitResult r = fitChain(start, points, {}, options);
-  ChainFitOptions unfitted;
-  unfitted.max_iterations = 0;
-  const ChainFitResult at_truth = fitChain(truth, points, {}, unfitted);
+  const std::vector<LaSegment> start =
+      buildChain({10.4, 19.7}, -0.38, 0.022, {{-0.6, 57.0, 0.0}, {INFINITY, 54.0, 0.0}, {-1.5, 64.0, -0.027}});
+  const auto [r, at_truth] = fitAgainstTruth(start, truth, points);
   ASSERT_TRUE(r.report.usable()) << r.report.message;
   ASSERT_EQ(r.segments.size(), 3u);
   expectG2(r.segments);
@@ -324,7 +325,7 @@ TEST(ChainFit, FitsAStraightLineBetweenInflections) {
 
   const std::vector<LaSegment> alone = {LaSegment::arc(10.0, {0, 0}, 0.0, 0.0)};
   const std::vector<Vec2> on_a_line = {{0, 0}, {5, 1.02}, {10, 1.98}, {15, 3.01}, {20, 4}};
-  const ChainFitResult l = fitChain(alone, on_a_line, {}, options);
+  const ChainFitResult l = fitChain(alone, on_a_line, {});
   ASSERT_TRUE(l.report.usable()) << l.report.message;
   ASSERT_EQ(l.segments.size(), 1u);
   EXPECT_EQ(l.segments[0].turning(), 0.0);

@@ -181,9 +181,8 @@ TEST(SelectChain, CollapsesASpikeOfTwoStubs) {
 // curvature, three segments within the tolerance. The merge cannot do it (no LA
 // segment has two zero ends).
 TEST(SelectChain, StraightensTwoFlatSegmentsIntoALine) {
-  std::vector<LaSegment> truth = buildChain({0, 0}, 0.2, 0.02, {{-1.0, 80.0, 0.0}});
-  truth.push_back(LaSegment::arc(100.0, truth.back().end(), truth.back().theta(80.0), 0.0));
-  appendChain(truth, truth.back().end(), truth.back().theta0(), 0.0, {{-1.0, 80.0, -0.02}});
+  const std::vector<LaSegment> truth =
+      buildChain({0, 0}, 0.2, 0.02, {{-1.0, 80.0, 0.0}, {INFINITY, 100.0, 0.0}, {-1.0, 80.0, -0.02}});
   std::vector<LaSegment> start = {truth[0]};
   appendChain(start, truth[0].end(), truth[0].theta(80.0), 0.0, {{-1.0, 50.0, 0.0005}, {-1.0, 50.0, 0.0}, {-1.0, 80.0, -0.02}});
   const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);

@@ -34,7 +34,8 @@ inline double relDiff(double a, double b) {
 // --- G2 chains of LA segments built with known parameters, sampled, measured.
 
 /// One segment of a chain: its law, length and end curvature (its start follows the
-/// previous segment's end).
+/// previous segment's end). An infinite alpha is a straight line (its neighbours meet
+/// it at zero curvature).
 struct Spec {
   double alpha, length, kappa_end;
 };
@@ -43,7 +44,8 @@ struct Spec {
 inline void appendChain(std::vector<LaSegment>& chain, Vec2 start, double theta, double kappa,
                         const std::vector<Spec>& specs) {
   for (const Spec& s : specs) {
-    chain.emplace_back(s.alpha, s.length, start, theta, kappa, s.kappa_end);
+    if (std::isinf(s.alpha)) chain.push_back(LaSegment::arc(s.length, start, theta, 0.0));
+    else chain.emplace_back(s.alpha, s.length, start, theta, kappa, s.kappa_end);
     start = chain.back().end();
     theta = chain.back().theta(s.length);
     kappa = s.kappa_end;
