@@ -58,7 +58,8 @@ struct SelectionOptions {
   /// shaped (the app's editing works on them).
   double max_turning = 2.0;
   /// Slivers collapsed, splits (after Lawson's reweighting) and merges tried; false: only
-  /// hooks beside corners and stubs are collapsed (for segments chosen already).
+  /// hooks beside corners and stubs are collapsed and nearly straight runs straightened
+  /// (for segments chosen already).
   bool refine = true;
   ChainFitOptions fit;
 };
