@@ -60,6 +60,10 @@ constexpr double kOutlyingFoot = 3.0;
 // A bin of points stands in by its centroid where the chain's sagitta across it is at
 // most this fraction of the noise (the bias then adds at most 1% to a point's variance).
 constexpr double kBinBias = 0.1;
+// A segment shorter than ChainFitOptions::min_length costs as much as a point this many
+// noise sigmas off per e-fold it is shorter: least squares would shrink a segment to
+// nothing to follow a sharp vertex of the points with a bend no point can place.
+constexpr double kShortSegmentWeight = 10.0;
 // Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
 constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0, kMaxLambda = 1e10;
 // Weight of a constraint violation (squared) in the merit function that accepts steps:
@@ -512,6 +516,7 @@ struct Layout {
   Vec2 end_point = Vec2::Zero();  // where a fixed end stays
   double total_turning = 0.0;     // closed: the end tangent is the start's plus this
   double prior_alpha = 0.0, prior_weight = 0.0;  // residual prior_weight (alpha - prior_alpha) per segment
+  double min_length = 0.0, length_weight = 0.0;  // residual length_weight log(min_length / length), if positive
   int size = 0;
 
   // closed with a corner at its seam: the chain returns to its start in position only
@@ -646,7 +651,7 @@ class ChainProblem {
   // components of its two end points (pinned to the chain's ends), and one per segment
   // for the prior on its alpha.
   std::size_t ends() const { return layout_.closed ? 0 : 2; }
-  std::size_t rows() const { return points_.size() + ends() + layout_.segments; }
+  std::size_t rows() const { return points_.size() + ends() + 2 * layout_.segments; }
 
   // Projects the feet on the model (an open chain's end points stay at its ends) and
   // fills the residuals; the constraint values too.
@@ -678,6 +683,9 @@ class ChainProblem {
     for (std::size_t i = 0; i < layout_.segments; ++i)
       r[static_cast<Eigen::Index>(n_points + ends() + i)] =
           layout_.alpha[i] < 0 ? 0.0 : layout_.prior_weight * (m.laws[i].alpha - layout_.prior_alpha);
+    for (std::size_t i = 0; i < layout_.segments; ++i)
+      r[static_cast<Eigen::Index>(n_points + ends() + layout_.segments + i)] =
+          layout_.length_weight * std::max(0.0, std::log(layout_.min_length / m.laws[i].length));
     c.resize(layout_.constraints());
     const std::size_t n = layout_.segments;
     if (layout_.seamCorner()) {
@@ -719,6 +727,16 @@ class ChainProblem {
     }
     for (std::size_t i = 0; i < layout_.segments; ++i)
       if (layout_.alpha[i] >= 0) j(static_cast<Eigen::Index>(n_points + ends() + i), layout_.alpha[i]) = layout_.prior_weight;
+    for (std::size_t i = 0; i < layout_.segments; ++i) {
+      const Jet& length = m.jets[i].length;
+      if (!(length.a < layout_.min_length)) continue;
+      for (int c = 0; c < 4; ++c) {
+        const int col = m.columns[i][c];
+        if (col >= 0)
+          j(static_cast<Eigen::Index>(n_points + ends() + layout_.segments + i), col) -=
+              layout_.length_weight * m.factors[i][c] * length.v[c] / length.a;
+      }
+    }
     cj = constraintJacobian(layout_, m);
   }
 
@@ -1037,6 +1055,8 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   layout.size = static_cast<int>(x0.size());
   layout.prior_alpha = options.alpha_prior;
   layout.prior_weight = options.alpha_spread > 0.0 ? options.noise / scale / options.alpha_spread : 0.0;
+  layout.min_length = options.min_length / scale;
+  layout.length_weight = kShortSegmentWeight * options.noise / scale;
   layout.lower = Eigen::Map<Eigen::VectorXd>(lower.data(), layout.size);
   layout.upper = Eigen::Map<Eigen::VectorXd>(upper.data(), layout.size);
   const Eigen::VectorXd step_caps = Eigen::Map<Eigen::VectorXd>(caps.data(), layout.size);

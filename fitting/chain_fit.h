@@ -103,6 +103,11 @@ struct ChainFitOptions {
   /// whose curvature barely changes), alpha no longer wanders to a bound while the
   /// solver crawls along a flat valley: the maximum a posteriori estimate.
   double noise = 0.0;
+  /// Segments shorter than this (world units; 0: none) are penalized, weighed by the
+  /// noise above (chain_fit.cpp, kShortSegmentWeight): a bend tighter than the points
+  /// can tell (a sharp vertex of noisy points under the corner angle) spreads over at
+  /// least this length unless the points insist. The model selection sets its tolerance.
+  double min_length = 0.0;
   double alpha_prior = 0.5, alpha_spread = 2.0;
   /// Per point, the weight of its residual (empty: all 1). Raising the weights of the
   /// points furthest off moves the least-squares fit towards the smallest largest

@@ -266,13 +266,16 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
 
 SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
                             const std::vector<ChainFoot>& feet, const SelectionOptions& options) {
+  // (a segment shorter than the tolerance is a stub: no point places it)
+  ChainFitOptions base = options.fit;
+  base.min_length = options.tolerance;
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
   // stopped, for `patience` times as many steps: a long chain far from its start needs
   // them, and only such a chain pays for them.
   // (an edit renumbers the corners' joints: each fit names the corners of its chain)
   auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet,
                  const std::vector<ChainCorner>& corners) {
-    ChainFitOptions o = options.fit;
+    ChainFitOptions o = base;
     o.corners = corners;
     ChainFitResult r = fitChain(start, points, start_feet, o);
     if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance) return r;
@@ -398,7 +401,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     for (int round = 0; round < options.reweighing_rounds && out.fit.max_distance > options.tolerance; ++round) {
       for (std::size_t k = 0; k < weights.size(); ++k)
         weights[k] *= std::max(1.0, out.fit.distance[k] / options.tolerance);
-      ChainFitOptions weighted = options.fit;
+      ChainFitOptions weighted = base;
       weighted.weights = weights;
       weighted.corners = out.corners;
       const ChainFitResult r = fitChain(out.fit.segments, points, out.fit.feet, weighted);

@@ -27,6 +27,9 @@
 // turning; a part keeps at least one segment; an edit renumbers the corners
 // (SelectionResult::corners).
 //
+// Every fit here keeps segments from shrinking below the tolerance unless the points
+// insist (ChainFitOptions::min_length): such a segment is a stub.
+//
 // A collapse or merge is kept when the refitted chain stays within the tolerance and
 // the points do not object: the rise of the sum of squared distances, per unknown
 // removed, is below `significance` times the residual variance (the F-test of nested

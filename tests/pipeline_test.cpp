@@ -805,6 +805,36 @@ TEST(PipelineStarts, ASplineChainThatSetsOffAstrayIsStartedAgain) {
   expectGaps(r);
 }
 
+// Two straight strokes meeting at a bend of 0.9 rad, under the corner angle (1 rad), so
+// one smooth part: sampled every 5.6 units with noise 0.07, 12 seeds. Least squares
+// followed the points' sharp vertex with a bend a fraction of the tolerance long (down
+// to zero on 5 of the seeds), which no point can place: a spike in the curvature plot.
+// Segments shorter than the tolerance are penalized (ChainFitOptions::min_length), so
+// the bend spreads over at least half the tolerance, within the tolerance.
+TEST(PipelineFairness, ABendUnderTheCornerAngleIsNoTighterThanTheToleranceTells) {
+  constexpr double kSpacing = 5.6, kAngle = 0.9;
+  const Vec2 a(0, 0), vertex(100, 0);
+  const Vec2 b = vertex + 100.0 * Vec2(std::cos(kAngle), std::sin(kAngle));
+  const int per_side = static_cast<int>(100.0 / kSpacing);
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.07);
+    std::vector<Vec2> points;
+    for (int k = 0; k <= 2 * per_side; ++k) {
+      const Vec2 p = k <= per_side ? a + (static_cast<double>(k) / per_side) * (vertex - a)
+                                   : vertex + (static_cast<double>(k - per_side) / per_side) * (b - vertex);
+      points.push_back(p + Vec2(noise(rng), noise(rng)));
+    }
+    const FitResult r = fit(points, FitOptions{});
+    ASSERT_FALSE(r.curve.pieces.empty());
+    EXPECT_TRUE(r.cleaned.corners.empty());
+    EXPECT_LE(r.quality.max_dev, r.tolerance);
+    for (const CurvePiece& piece : r.curve.pieces) EXPECT_GE(piece.segment.length(), 0.5 * r.tolerance) << describeFit(r);
+    expectGaps(r);
+  }
+}
+
 // A caret drawn fast: two bowed arms meeting at a corner that falls between samples
 // (about 4.7 units apart, the nearest 1.3 to 2 units from the corner, more than the
 // tolerance), with noise of 0.1% of the diagonal. Stage 7 fits both arms as one chain
