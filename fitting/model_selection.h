@@ -54,8 +54,8 @@ struct SelectionOptions {
   double weak_extremum = 0.5;
   /// A run of one or two segments between zero-curvature joints (or a chain's ends)
   /// turning less than this (radians) is a line candidate. (A line is a stronger claim
-  /// than a sliver: at the sliver's 0.08, the shared data came out with 18 segments
-  /// fewer of 1,328, and one more stroke missed the tolerance, by 2%.)
+  /// than a sliver: at the sliver's 0.08, the shared data came out with 17 segments
+  /// fewer of 1,299, and one more stroke missed the tolerance, by 2%.)
   double straight_turning = 0.04;
   /// Merged segments turn at most this (radians), so every control triangle stays well
   /// shaped (the app's editing works on them).
