@@ -63,6 +63,8 @@ class LaSegment {
   /// +1 for a left-turning segment, -1 for right, 0 for a straight line.
   double turnSign() const { return sign_; }
   bool isCircular() const { return law_ == Law::kConstant; }
+  /// A straight line (a circular arc of zero curvature).
+  bool isStraight() const { return sign_ == 0.0; }
 
   double kappa(double s) const;
   /// d kappa / ds; infinite at an inflection end where the law is singular (alpha < -1).

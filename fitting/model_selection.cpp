@@ -32,13 +32,11 @@ constexpr double kHookRatio = 0.2;
 // A split is kept if it brings the worst point within the tolerance or this factor closer.
 constexpr double kMarkedGain = 0.99;
 
-bool isLine(const LaSegment& s) { return s.kappaStart() == 0.0 && s.kappaEnd() == 0.0; }
-
 std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners) {
   std::vector<Piece> out;
   for (const LaSegment& s : chain) {
     out.push_back({std::isfinite(s.alpha()) ? s.alpha() : kZeroEndAlpha, s.kappaStart(), s.kappaEnd(), s.turning()});
-    if (isLine(s)) out.back().line_length = s.length();
+    if (s.isStraight()) out.back().line_length = s.length();
   }
   for (const ChainCorner& c : corners)
     out[c.joint].corner_turn = c.joint == 0 ? 0.0 : turnBetween(chain[c.joint - 1], chain[c.joint]);
@@ -359,7 +357,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         for (std::size_t count = 1; count <= 2 && i + count <= n; ++count) {
           const LaSegment& first = segs[i];
           const LaSegment& last = segs[i + count - 1];
-          if ((count == 1 && isLine(first)) || (count == 2 && corner[i + 1])) continue;
+          if ((count == 1 && first.isStraight()) || (count == 2 && corner[i + 1])) continue;
           if (!(first.kappaStart() == 0.0 || free(i)) || !(last.kappaEnd() == 0.0 || free(i + count))) continue;
           const double turning = std::abs(first.turning()) + (count == 2 ? std::abs(last.turning()) : 0.0);
           if (turning < options.straight_turning) candidates.push_back({turning, Kind::kStraighten, i, count});
@@ -420,7 +418,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const double bend = 8.0 * side / (s.length() * s.length());
     const double u = std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin);
     ++edits;
-    return attempt(isLine(s) ? bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed)
+    return attempt(s.isStraight() ? bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed)
                              : split(from.segments, from.feet, out.corners, at.segment, u));
   };
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)

@@ -975,8 +975,7 @@ void polishPart(PartFit& fit, const Part& part, double tol, double noise, double
   co.max_iterations = kFitIterations;
   co.noise = noise;
   std::vector<LaSegment> start = fit.segments;
-  bool straight = false;
-  for (const LaSegment& s : start) straight |= !std::isfinite(s.alpha()) && s.kappaStart() == 0.0;
+  const bool straight = std::any_of(start.begin(), start.end(), [](const LaSegment& s) { return s.isStraight(); });
   std::vector<ChainFoot> feet = fit.feet;
   const bool from_spline = !fit.g2.usable() || straight || start.size() != fit.spans.size();
   // (with `halve`, the spline's spans where a shot segment sets off astray are halved)
