@@ -1089,9 +1089,9 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
 // point held at the corner (the tip of a rounded corner), starting from the first try's
 // chain, the better kept. Where the curve misses, the segments are chosen again too
 // (selectChain; else only hooks beside corners are collapsed). A straight part stays a
-// line (unless the selection bent and split it). Kept where it brings the curve closer to the points, counting the
-// stray, or keeps it within the tolerance. True if it changed the chains; false where a
-// part has no G2 chain.
+// line unless the selection bends it. Kept where it brings the curve closer to the
+// points, counting the stray, or keeps it within the tolerance. True if it changed the
+// chains; false where a part has no G2 chain.
 bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed, double tol,
                       double noise, double diag, const FitOptions& options) {
   const std::size_t n = parts.size();
@@ -1157,14 +1157,13 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
                                                  : ChainFoot{f.segment - s0, f.u});
         fit.max_dev = std::max(fit.max_dev, joint.distance[at]);
       }
-      const bool straight = !fit.spline && count == 1;  // (still a line)
       fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
       worst = std::max({worst, fit.max_dev, fit.stray});
       fit.warnings.clear();  // (of the stages whose chain this replaces)
       fit.g2 = {SolveStatus::kConverged, joint.report.iterations, 0.0, "G2 by construction (stage 7, across corners)"};
       if (fit.spline) {
         fit.reports = reportsOf(fit.segments, feet, fit.parameters, *fit.spline, false);
-      } else if (!straight) {  // a straight part the fit bent and split: LA segments, no spline
+      } else {  // a straight part: still a line, or bent (and split) by the selection, no spline
         fit.reports.assign(count, fits[k].reports.front());
         for (std::size_t i = 0; i < count; ++i) fit.reports[i].alpha = fit.segments[i].alpha();
       }
