@@ -955,6 +955,21 @@ std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const
   return out;
 }
 
+// Stage 7's selection options, for `parts` parts' points: the tolerance less its margin,
+// the alpha range, the points and iterations per fit, the noise (for the bins and the
+// priors); closure, fixed ends and corners are the caller's.
+SelectionOptions stage7Selection(double tol, double noise, const FitOptions& options, std::size_t parts = 1) {
+  SelectionOptions so;
+  so.tolerance = (1.0 - kSelectionMargin) * tol;
+  ChainFitOptions& co = so.fit;
+  co.min_alpha = options.min_alpha;
+  co.max_alpha = options.max_alpha;
+  co.max_points = kFitPoints * parts;
+  co.max_iterations = kFitIterations;
+  co.noise = noise;
+  return so;
+}
+
 // Stage 7 on one part: fits its chain to the points and selects its segments
 // (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
 // the spline. The result replaces the part's chain where it is within the tolerance,
@@ -963,17 +978,11 @@ std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const
 void polishPart(PartFit& fit, const Part& part, double tol, double noise, double diag,
                 const FitOptions& options) {
   if (!fit.spline) return;  // a straight part
-  SelectionOptions so;
-  so.tolerance = (1.0 - kSelectionMargin) * tol;
+  SelectionOptions so = stage7Selection(tol, noise, options);
   ChainFitOptions& co = so.fit;
-  co.min_alpha = options.min_alpha;
-  co.max_alpha = options.max_alpha;
   co.closed = part.closed;
   co.fix_start = part.starts_at_corner;
   co.fix_end = part.ends_at_corner;
-  co.max_points = kFitPoints;
-  co.max_iterations = kFitIterations;
-  co.noise = noise;
   std::vector<LaSegment> start = fit.segments;
   const bool straight = std::any_of(start.begin(), start.end(), [](const LaSegment& s) { return s.isStraight(); });
   std::vector<ChainFoot> feet = fit.feet;
@@ -1098,9 +1107,9 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   if (n == 0 || !(parts.front().starts_at_corner || parts.front().ends_at_corner)) return false;
   std::vector<LaSegment> chain;
   std::vector<Vec2> points;
-  SelectionOptions so;
-  so.tolerance = (1.0 - kSelectionMargin) * tol;
+  SelectionOptions so = stage7Selection(tol, noise, options, n);
   ChainFitOptions& co = so.fit;
+  co.closed = closed;
   std::vector<std::size_t> first_point;
   for (std::size_t k = 0; k < n; ++k) {
     const PartFit& fit = fits[k];
@@ -1123,12 +1132,6 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
     before = std::max({before, fit.max_dev, fit.stray});
   }
-  co.closed = closed;
-  co.min_alpha = options.min_alpha;
-  co.max_alpha = options.max_alpha;
-  co.max_points = kFitPoints * n;
-  co.max_iterations = kFitIterations;
-  co.noise = noise;
 
   // The parts' chains from one joint fit, with their largest deviation or stray.
   auto split = [&](const SelectionResult& selected, std::vector<PartFit>& out) -> double {
