@@ -114,8 +114,7 @@ std::optional<Edit> bendLine(const std::vector<LaSegment>& chain, const std::vec
   const double length = chain[i].length(), half = 0.5 * bend * length;
   const bool free_start = e.pieces[i].atCorner() || (i == 0 && !closed);
   const bool free_end = i + 1 < n ? e.pieces[i + 1].atCorner() : !closed;
-  if (i == 0) e.theta -= half;
-  else if (free_start) e.pieces[i].corner_turn -= half;
+  if (free_start) (i == 0 ? e.theta : e.pieces[i].corner_turn) -= half;
   if (i + 1 < n && free_end) e.pieces[i + 1].corner_turn -= half;
   if (free_start && free_end) {
     e.pieces[i] = {kZeroEndAlpha, bend, bend, bend * length, e.pieces[i].corner_turn};
