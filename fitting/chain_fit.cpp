@@ -648,8 +648,8 @@ class ChainProblem {
       : layout_(layout), points_(points), weights_(weights), ranges_(ranges) {}
 
   // One row per point (its tangent distance), for an open chain the tangential
-  // components of its two end points (pinned to the chain's ends), and one per segment
-  // for the prior on its alpha.
+  // components of its two end points (pinned to the chain's ends), and two per segment:
+  // the prior on its alpha, and the penalty on a length below min_length (0 above it).
   std::size_t ends() const { return layout_.closed ? 0 : 2; }
   std::size_t rows() const { return points_.size() + ends() + 2 * layout_.segments; }
 
