@@ -37,6 +37,21 @@ constexpr double kTolerance = 4.0 * kSigma;    // SelectionOptions::tolerance th
 constexpr double kCornerTurn = 1.5;            // the corner chains' tangent turn (radians)
 constexpr std::size_t kCornerPoint = 120;      // their corner's sample: joint 2 at 60 per segment
 
+// The selection at kTolerance (and refine as given).
+SelectionOptions selection(bool refine = true) {
+  SelectionOptions options;
+  options.tolerance = kTolerance;
+  options.refine = refine;
+  return options;
+}
+
+// The fit of `start` alone, with `options` but no edit.
+ChainFitResult withoutEdits(const std::vector<LaSegment>& start, const std::vector<Vec2>& points,
+                            SelectionOptions options) {
+  options.max_edits = 0;
+  return selectChain(start, points, {}, options).fit;
+}
+
 // The two-segment part before the corner chains' corner (curvature 0.01 -> 0.025 -> 0.008).
 std::vector<LaSegment> partBeforeCorner() {
   return buildChain({0, 0}, 0.3, 0.01, {{1.0, 80.0, 0.025}, {-1.0, 70.0, 0.008}});
@@ -61,11 +76,8 @@ struct SplitCase {
 // split is needed); the chosen chain split, has the truth's 3 segments (4 at most) and is
 // within the tolerance of every point, measured here.
 void expectSplitToTheTruth(const SplitCase& c) {
-  SelectionOptions options;
-  options.tolerance = kTolerance;
-  SelectionOptions no_edits = options;
-  no_edits.max_edits = 0;
-  ASSERT_GT(maxDistance(selectChain(c.start, c.points, {}, no_edits).fit.segments, c.points), kTolerance)
+  const SelectionOptions options = selection();
+  ASSERT_GT(maxDistance(withoutEdits(c.start, c.points, options).segments, c.points), kTolerance)
       << "two segments fit already: nothing to split";
   const SelectionResult r = selectChain(c.start, c.points, {}, options);
   EXPECT_GE(r.splits, 1);
@@ -115,11 +127,8 @@ TEST(SelectChain, CollapsesASliver) {
     const std::vector<LaSegment> start = cutAt(c.truth, c.cut_segment, c.cut_at);
     ASSERT_LT(std::abs(start[1].turning()), 0.05);
     const std::vector<Vec2> points = sampleChain(c.truth, 80, kSigma, 5);
-    SelectionOptions options;
-    options.tolerance = kTolerance;
-    SelectionOptions no_edits = options;
-    no_edits.max_edits = 0;
-    const ChainFitResult plain = selectChain(start, points, {}, no_edits).fit;
+    const SelectionOptions options = selection();
+    const ChainFitResult plain = withoutEdits(start, points, options);
     ASSERT_EQ(plain.segments.size(), 3u);
     ASSERT_LT(std::abs(plain.segments[1].turning()), options.sliver_turning) << "the first fit grew the sliver";
     const SelectionResult r = selectChain(start, points, {}, options);
@@ -138,9 +147,7 @@ TEST(SelectChain, RemovesASliverAtACurvatureMaximum) {
   const std::vector<LaSegment> start = cutAt(truth, 0, 78.8);
   ASSERT_LT(start[1].turning(), 0.05);
   const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
-  SelectionOptions options;
-  options.tolerance = kTolerance;
-  const SelectionResult r = selectChain(start, points, {}, options);
+  const SelectionResult r = selectChain(start, points, {}, selection());
   EXPECT_GE(r.collapses, 1);
   EXPECT_EQ(r.fit.segments.size(), 2u);
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
@@ -159,12 +166,8 @@ TEST(SelectChain, CollapsesASpikeOfTwoStubs) {
   const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
   for (const bool refine : {true, false}) {
     SCOPED_TRACE(refine ? "refine" : "hooks and stubs only");
-    SelectionOptions options;
-    options.tolerance = kTolerance;
-    options.refine = refine;
-    SelectionOptions no_edits = options;
-    no_edits.max_edits = 0;
-    const ChainFitResult plain = selectChain(start, points, {}, no_edits).fit;
+    const SelectionOptions options = selection(refine);
+    const ChainFitResult plain = withoutEdits(start, points, options);
     ASSERT_EQ(plain.segments.size(), 4u);
     ASSERT_LT(plain.segments[1].length() + plain.segments[2].length(), kTolerance) << "the first fit grew the spike";
     const SelectionResult r = selectChain(start, points, {}, options);
@@ -186,9 +189,7 @@ TEST(SelectChain, StraightensTwoFlatSegmentsIntoALine) {
   std::vector<LaSegment> start = {truth[0]};
   appendChain(start, truth[0].end(), truth[0].theta(80.0), 0.0, {{-1.0, 50.0, 0.0005}, {-1.0, 50.0, 0.0}, {-1.0, 80.0, -0.02}});
   const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
-  SelectionOptions options;
-  options.tolerance = kTolerance;
-  const SelectionResult r = selectChain(start, points, {}, options);
+  const SelectionResult r = selectChain(start, points, {}, selection());
   EXPECT_EQ(r.straightenings, 1);
   ASSERT_EQ(r.fit.segments.size(), 3u);
   const LaSegment& line = r.fit.segments[1];
@@ -208,11 +209,8 @@ TEST(SelectChain, BendsALineThePointsBowAwayFrom) {
   const std::vector<Vec2> points = sampleChain(truth, 150, kSigma, 5);
   const std::vector<LaSegment> start = {
       LaSegment::arc((points.back() - points.front()).norm(), points.front(), angleOf(points.back() - points.front()), 0.0)};
-  SelectionOptions options;
-  options.tolerance = kTolerance;
-  SelectionOptions no_edits = options;
-  no_edits.max_edits = 0;
-  ASSERT_GT(maxDistance(selectChain(start, points, {}, no_edits).fit.segments, points), kTolerance) << "the line fits";
+  const SelectionOptions options = selection();
+  ASSERT_GT(maxDistance(withoutEdits(start, points, options).segments, points), kTolerance) << "the line fits";
   const SelectionResult r = selectChain(start, points, {}, options);
   ASSERT_EQ(r.fit.segments.size(), 1u);
   EXPECT_GT(r.fit.segments[0].turning(), 0.0);
@@ -239,9 +237,7 @@ void expectCornerKept(const SelectionResult& r, const std::vector<LaSegment>& tr
 // to joint 2, where the second part now starts, and kept.
 void expectHookCollapsed(const std::vector<LaSegment>& start, std::size_t corner, const std::vector<Vec2>& points,
                          const std::vector<LaSegment>& truth, bool refine) {
-  SelectionOptions options;
-  options.tolerance = kTolerance;
-  options.refine = refine;
+  SelectionOptions options = selection(refine);
   options.fit.corners = {{corner, kCornerPoint}};
   const SelectionResult r = selectChain(start, points, {}, options);
   EXPECT_GE(r.collapses, 1);
@@ -283,8 +279,7 @@ TEST(SelectChain, NeverMergesAcrossACorner) {
   const std::vector<LaSegment> truth =
       cutAt(buildChain({0, 0}, 0.3, 0.01, {{1.0, 80.0, 0.02}, {-1.0, 120.0, 0.006}}), 1, 60.0);
   const std::vector<Vec2> points = sampleChain(truth, 60, kSigma, 13);
-  SelectionOptions options;
-  options.tolerance = kTolerance;
+  SelectionOptions options = selection();
   const SelectionResult smooth = selectChain(truth, points, {}, options);
   ASSERT_GE(smooth.merges, 1) << "without the corner, no merge there: this test shows nothing";
   ASSERT_EQ(smooth.fit.segments.size(), 2u);
@@ -328,8 +323,7 @@ TEST(SelectChain, SplitsRenumberTheCorners) {
   for (const auto& [name, start, joint] : {std::tuple{"split after the corner", after, std::size_t{2}},
                                            std::tuple{"split before the corner", before, std::size_t{1}}}) {
     SCOPED_TRACE(name);
-    SelectionOptions options;
-    options.tolerance = kTolerance;
+    SelectionOptions options = selection();
     options.fit.corners = {{joint, kCornerPoint}};
     const SelectionResult r = selectChain(start, points, {}, options);
     EXPECT_GE(r.splits, 1);
