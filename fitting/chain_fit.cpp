@@ -558,49 +558,27 @@ struct ChainModel : ChainGeometry {
   std::vector<std::array<double, 4>> factors;  // d local / d global
 };
 
-// Builds the model at x. False if a segment's unknowns leave the LA family or overflow.
-bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
+// The derivatives of a model built at x (buildModel without them): the Jet panels and
+// the start poses' Jacobian. (An accepted trial gets them without building its double
+// panels again.)
+void addDerivatives(const Layout& layout, const Eigen::VectorXd& x, ChainModel& m) {
   const std::size_t n = layout.segments;
-  m.closed = layout.closed;
-  m.corner = layout.corner;
-  m.laws.resize(n);
-  m.panels.resize(n);
-  m.rotations.resize(n);
-  m.start.resize(n + 1);
-  m.angle.resize(n + 1);
-  m.start[0] = layout.fix_start ? layout.start_point : Vec2(x[layout.start], x[layout.start + 1]);
-  m.angle[0] = x[layout.theta];
-  m.total_length = 0.0;
-  if (derivatives) {
-    m.jets.resize(n);
-    m.columns.resize(n);
-    m.factors.resize(n);
-    m.pose_jacobian.assign(n + 1, PoseJacobian::Zero(3, layout.size));
-    if (!layout.fix_start) m.pose_jacobian[0](0, layout.start) = m.pose_jacobian[0](1, layout.start + 1) = 1.0;
-    m.pose_jacobian[0](2, layout.theta) = 1.0;
-  }
+  m.jets.resize(n);
+  m.columns.resize(n);
+  m.factors.resize(n);
+  m.pose_jacobian.assign(n + 1, PoseJacobian::Zero(3, layout.size));
+  if (!layout.fix_start) m.pose_jacobian[0](0, layout.start) = m.pose_jacobian[0](1, layout.start + 1) = 1.0;
+  m.pose_jacobian[0](2, layout.theta) = 1.0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Law law = layout.law(x, i);
-    m.laws[i] = law;
-    Panels<double>& p = m.panels[i];
-    buildPanels(law, p);
-    if (derivatives) {
-      buildPanels(law, m.jets[i]);
-      const int k0 = law.zero == ZeroEnd::kStart || law.zero == ZeroEnd::kBoth ? -1 : layout.kappa_start[i];
-      const int k1 = law.zero == ZeroEnd::kEnd || law.zero == ZeroEnd::kBoth ? -1 : layout.kappa_end[i];
-      m.columns[i] = {layout.alpha[i], k0, k1, layout.turning[i]};
-      // d log|kappa| / d kappa = 1 / kappa
-      m.factors[i] = {1.0, k0 < 0 ? 0.0 : 1.0 / x[k0], k1 < 0 ? 0.0 : 1.0 / x[k1], 1.0};
-    }
-    const double ex = p.x.back(), ey = p.y.back(), turn = p.theta.back();
-    if (!std::isfinite(ex) || !std::isfinite(ey) || !std::isfinite(turn) || !(law.length > 0.0)) return false;
-    m.total_length += law.length;
-    const Eigen::Matrix2d& r = m.rotations[i] = rotation(m.angle[i]);
-    const Vec2 world = r * Vec2(ex, ey);
-    m.start[i + 1] = m.start[i] + world;
-    const int corner = layout.corner_turn[i + 1];
-    m.angle[i + 1] = m.angle[i] + turn + (corner >= 0 ? x[corner] : 0.0);
-    if (!derivatives) continue;
+    const Law& law = m.laws[i];
+    buildPanels(law, m.jets[i]);
+    const int k0 = law.zero == ZeroEnd::kStart || law.zero == ZeroEnd::kBoth ? -1 : layout.kappa_start[i];
+    const int k1 = law.zero == ZeroEnd::kEnd || law.zero == ZeroEnd::kBoth ? -1 : layout.kappa_end[i];
+    m.columns[i] = {layout.alpha[i], k0, k1, layout.turning[i]};
+    // d log|kappa| / d kappa = 1 / kappa
+    m.factors[i] = {1.0, k0 < 0 ? 0.0 : 1.0 / x[k0], k1 < 0 ? 0.0 : 1.0 / x[k1], 1.0};
+    const Eigen::Matrix2d& r = m.rotations[i];
+    const Vec2 world = r * Vec2(m.panels[i].x.back(), m.panels[i].y.back());
     const PoseJacobian& here = m.pose_jacobian[i];
     PoseJacobian& next = m.pose_jacobian[i + 1];
     next = here;
@@ -618,8 +596,37 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
       next(1, col) += f * d.y();
       next(2, col) += f * jt.v[c];
     }
-    if (corner >= 0) next(2, corner) += 1.0;
+    if (const int corner = layout.corner_turn[i + 1]; corner >= 0) next(2, corner) += 1.0;
   }
+}
+
+// Builds the model at x. False if a segment's unknowns leave the LA family or overflow.
+bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
+  const std::size_t n = layout.segments;
+  m.closed = layout.closed;
+  m.corner = layout.corner;
+  m.laws.resize(n);
+  m.panels.resize(n);
+  m.rotations.resize(n);
+  m.start.resize(n + 1);
+  m.angle.resize(n + 1);
+  m.start[0] = layout.fix_start ? layout.start_point : Vec2(x[layout.start], x[layout.start + 1]);
+  m.angle[0] = x[layout.theta];
+  m.total_length = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Law law = layout.law(x, i);
+    m.laws[i] = law;
+    Panels<double>& p = m.panels[i];
+    buildPanels(law, p);
+    const double ex = p.x.back(), ey = p.y.back(), turn = p.theta.back();
+    if (!std::isfinite(ex) || !std::isfinite(ey) || !std::isfinite(turn) || !(law.length > 0.0)) return false;
+    m.total_length += law.length;
+    const Eigen::Matrix2d& r = m.rotations[i] = rotation(m.angle[i]);
+    m.start[i + 1] = m.start[i] + r * Vec2(ex, ey);
+    const int corner = layout.corner_turn[i + 1];
+    m.angle[i + 1] = m.angle[i] + turn + (corner >= 0 ? x[corner] : 0.0);
+  }
+  if (derivatives) addDerivatives(layout, x, m);
   return true;
 }
 
@@ -880,7 +887,10 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
       accepted = true;
       break;
     }
-    if (accepted && !buildModel(layout, x, true, model)) return SolveStatus::kIterationLimit;  // x was modelled as a trial
+    if (accepted) {  // (trial_model is at x)
+      std::swap(model, trial_model);
+      addDerivatives(layout, x, model);
+    }
     // No step lowers the merit: a minimum to the steps' resolution.
     if (!accepted || converged) return SolveStatus::kConverged;
   }
