@@ -179,6 +179,13 @@ double gridSpacing(const std::vector<Vec2>& p) {
   return static_cast<double>(on_grid) >= kGridShare * static_cast<double>(components.size()) ? q : 0.0;
 }
 
+/// The corner window of points p with noise level `noise` (Scales::window).
+double cornerWindow(const std::vector<Vec2>& p, bool closed, double noise, const CleanupOptions& options) {
+  double length = arcLengths(p).back();
+  if (closed && p.size() > 1) length += (p.front() - p.back()).norm();
+  return std::max(options.corner_window * length, kWindowNoise * noise);
+}
+
 Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptions& options) {
   Scales scales;
   scales.median_step = medianStep(p);
@@ -192,9 +199,7 @@ Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptio
   // On a pixel grid most steps of a slanted line are exactly straight runs, so the
   // median above sees no noise; the quantization is half a grid step.
   scales.noise = std::max(scales.noise, 0.5 * gridSpacing(p));
-  double length = arcLengths(p).back();
-  if (closed && p.size() > 1) length += (p.front() - p.back()).norm();
-  scales.window = std::max(options.corner_window * length, kWindowNoise * scales.noise);
+  scales.window = cornerWindow(p, closed, scales.noise, options);
   return scales;
 }
 
@@ -219,6 +224,8 @@ class Polyline {
 
   double length() const { return m_length; }
   std::ptrdiff_t size() const { return m_n; }
+  /// Arc length at each point from point 0.
+  const std::vector<double>& pointArcLengths() const { return m_s; }
   std::ptrdiff_t wrap(std::ptrdiff_t i) const { return m_closed ? ((i % m_n) + m_n) % m_n : i; }
   const Vec2& at(std::ptrdiff_t i) const { return m_p[static_cast<std::size_t>(wrap(i))]; }
 
@@ -387,7 +394,7 @@ struct HookLimits {
 std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Scales& scales,
                       const HookLimits& limits, const CleanupOptions& options) {
   const Polyline line(p, false);
-  const std::vector<double> s = arcLengths(p);
+  const std::vector<double>& s = line.pointArcLengths();
   const double max_length = std::min(options.hook_max_fraction * drawn_length, limits.max_length);
   const double w = scales.window;
   std::size_t best = 0;
@@ -442,7 +449,7 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
   const std::size_t n = p.size();
   if (n < 4) return std::nullopt;
   const Polyline line(p, false);
-  const std::vector<double> s = arcLengths(p);
+  const std::vector<double>& s = line.pointArcLengths();
   const double length = s.back();
   const double reach = options.close_fraction * boundingBoxDiagonal(p);
   const double tail_start = (1.0 - kMaxOverlapFraction) * length;
@@ -650,7 +657,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     for (std::size_t j = 0; j < kMaxOutlierPoints; ++j) {
       if ((pts.p[j + 1] - pts.p[j]).norm() > jump) dropped = j + 1;
     }
-    if (collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(dropped), pts.p.end()))) dropped = 0;
+    if (dropped > 0 && collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(dropped), pts.p.end()))) dropped = 0;
     pts.dropFront(dropped);
     result.trimmed_start += dropped;
   }
@@ -663,6 +670,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     pts.dropFront(seam.first);
   };
   Scales scales = measureScales(pts.p, false, options);
+  const std::size_t measured = pts.size();  // (points are only ever cut off: the same count, the same points)
   if (options.assume_closed || options.detect_closed) {
     if (const auto seam = findSeam(pts.p, scales, options)) close(*seam);
   }
@@ -673,7 +681,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     const double drawn_length = arcLengths(pts.p).back();
     HookLimits limits{(1.0 - kMinKeptFraction) * drawn_length, pts.size() - 3};
     std::size_t start = startHook(pts.p, drawn_length, scales, limits, options);
-    if (collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(start), pts.p.end()))) start = 0;
+    if (start > 0 && collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(start), pts.p.end()))) start = 0;
     if (start > 0) {
       limits.max_length -= arcLengths(pts.p)[start];
       limits.max_points -= start;
@@ -682,7 +690,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     }
     const std::vector<Vec2> reversed(pts.p.rbegin(), pts.p.rend());
     std::size_t end = startHook(reversed, drawn_length, scales, limits, options);
-    if (collinear(std::vector<Vec2>(pts.p.begin(), pts.p.end() - static_cast<std::ptrdiff_t>(end)))) end = 0;
+    if (end > 0 && collinear(std::vector<Vec2>(pts.p.begin(), pts.p.end() - static_cast<std::ptrdiff_t>(end)))) end = 0;
     if (end > 0) {
       pts.keepFront(pts.size() - end);
       result.trimmed_end += end;
@@ -695,12 +703,13 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   // 5. Input errors (the seam of a closed stroke could leave too little).
   publish();
   result.diagonal = boundingBoxDiagonal(pts.p);
-  if (collinear(pts.p)) fail("all points lie on one straight line", samples, result);
+  if (pts.size() < measured && collinear(pts.p)) fail("all points lie on one straight line", samples, result);
   if (result.closed && pts.size() < kMinClosedPoints) fail("a closed curve needs at least 4 points", samples, result);
 
   // 6. Corners; a closed stroke starts at its corner nearest the original start.
   if (options.detect_corners) {
-    scales = measureScales(pts.p, result.closed, options);
+    if (pts.size() < measured) scales = measureScales(pts.p, result.closed, options);
+    else scales.window = cornerWindow(pts.p, result.closed, scales.noise, options);
     result.corners = findCorners(pts.p, result.closed, scales.window, options);
   }
   if (result.closed && !result.corners.empty()) {
