@@ -100,8 +100,12 @@ constexpr std::ptrdiff_t kMinLegPoints = 3;
 /// from the chord (a circular arc turning 90 degrees has 0.21, one turning 60 degrees 0.13).
 constexpr double kHookStraightness = 0.15;
 /// A hook's chord is at least this many noise levels long (3 px on pixel-quantized
-/// input); anything shorter is within the sampling noise and harmless to the fit.
+/// input); anything shorter is within the sampling noise and harmless to the fit,
+/// unless it doubles back by more than kBackStepTurn: a pen-down back step (the fast $1
+/// x starts 2.2 px back against its stroke) sits beside the curve's end, which the fit
+/// pins to the first point, and no curve through both follows it.
 constexpr double kHookMinNoise = 6.0;
+constexpr double kBackStepTurn = 2.5;
 /// Coordinates are on a grid if this share of the step components are multiples of the
 /// smallest one, to within this tolerance (CSV files round to 6 decimals).
 constexpr double kGridShare = 0.95;
@@ -402,16 +406,15 @@ std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Sca
   const std::size_t max_points = std::min(limits.max_points, options.hook_max_samples);
   for (std::size_t k = 1; k <= max_points && k < p.size() && s[k] <= max_length; ++k) {
     const Vec2 chord = p[k] - p[0];
-    const double chord_length = chord.norm();
-    if (chord_length < kHookMinNoise * scales.noise) continue;
+    const bool short_chord = chord.norm() < kHookMinNoise * scales.noise;
     double deviation = 0.0;
     for (std::size_t j = 1; j < k; ++j) deviation = std::max(deviation, lineDistance(p[j], p[0], p[k]));
-    if (deviation > kHookStraightness * chord_length) continue;
+    if (deviation > kHookStraightness * chord.norm()) continue;
     const auto ki = static_cast<std::ptrdiff_t>(k);
     const auto b = line.walk(ki, +1, w, 2);
     if (!b) continue;
     const double turn = unsignedAngle(chord, line.at(*b) - p[k]);
-    if (turn <= best_turn) continue;
+    if (turn <= best_turn || (short_chord && turn <= kBackStepTurn)) continue;
     const auto full = line.turn(ki, w, 1);
     const auto half = line.turn(ki, 0.5 * w, 1);
     if (!full || !half) continue;

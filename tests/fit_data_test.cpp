@@ -10,7 +10,7 @@
 //    other exception, or StrokeError on a fittable stroke, fails;
 //  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
 //    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
-//    relative), but for the known misses (kKnownMisses), which are reported;
+//    relative);
 //  - glyph contours (fitted with assume_closed, see kDataSets) and the $1 'circle'
 //    gestures come out closed (curve.closed);
 //  - the $1 caret, v, rectangle, triangle and star keep their corners
@@ -160,14 +160,6 @@ Expectation expectationFor(const std::string& dataset, const fs::path& file) {
 
 class FitDataTest : public ::testing::TestWithParam<DataSet> {};
 
-// The strokes known to miss the default tolerance, the only ones excused from it (each
-// is reported when run): 1 of the 227, a fast $1 x with drawn corners, by 1.008x (every
-// least-squares fit of its first part ends further off than the paper's chain, 1.567
-// against a tolerance of 1.555, which is kept).
-const std::set<std::string> kKnownMisses = {
-    "strokes/dollar1_unistroke_s01_pilot/csv/fast/x.csv stroke 0",
-};
-
 // Runs every stroke of a data set.
 void fitDataSet(const DataSet& set) {
   const std::vector<fs::path> files = filesOf(kData / set.folder, set.extension);
@@ -246,12 +238,8 @@ void fitDataSet(const DataSet& set) {
       // A miss is never silent: the result says so in its warnings.
       EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance || warns(r, "misses the tolerance"), "silent miss"))
           << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " without a warning";
-      if (kKnownMisses.contains(name)) {
-        std::printf("[ known    ] %s: max_dev / tolerance %.3f (a known miss)\n", where.c_str(), ratio);
-      } else {
-        EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance), "max_dev > tolerance"))
-            << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
-      }
+      EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance), "max_dev > tolerance"))
+          << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
       if (expect.closed) {
         EXPECT_TRUE(check(r.curve.closed, "not closed")) << where << ": should be closed";
       }
@@ -277,8 +265,8 @@ void fitDataSet(const DataSet& set) {
 }
 
 // Every stroke fits without an exception (degenerate ones with StrokeError only), gives
-// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6) within the default tolerance (but the
-// known misses), closed shapes close and corners are kept.
+// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6) within the default tolerance, closed
+// shapes close and corners are kept.
 TEST_P(FitDataTest, EveryStrokeFitsG2WithinToleranceClosesAndKeepsCorners) { fitDataSet(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, FitDataTest, ::testing::ValuesIn(kDataSets),

@@ -447,6 +447,38 @@ TEST(CleanStroke, PixelQuantizationMakesNoHooksOrCorners) {
   }
 }
 
+TEST(CleanStroke, TrimsAPenDownBackStepShorterThanAHook) {
+  // A fast pixel stroke (the arc above sampled every 7 px) whose pen lands 2 px back
+  // from where it then sets off, and lifts after a 2 px step back (the fast $1 x):
+  // steps under kHookMinNoise noise levels, but doubling back. Both go; a short step
+  // that turns only 90 degrees stays (it is within the noise).
+  std::vector<Vec2> arc;
+  const double length = 300.0 * kPi / 3.0;
+  for (double s = 0.0; s <= length; s += 7.0) {
+    const Vec2 p = Vec2(0.0, 300.0) + 300.0 * unitVector(-0.5 * kPi + s / 300.0);
+    arc.emplace_back(std::round(p.x()), std::round(p.y()));
+  }
+  const Vec2 ahead = (arc[1] - arc[0]).normalized(), behind = (arc[arc.size() - 2] - arc.back()).normalized();
+  for (const double turn : {kPi, 0.9 * kPi}) {
+    SCOPED_TRACE("back step turning " + std::to_string(turn) + " rad");
+    std::vector<Vec2> points = arc;
+    const Vec2 down = arc.front() + 2.0 * unitVector(angleOf(ahead) + kPi - turn);
+    const Vec2 up = arc.back() + 2.0 * unitVector(angleOf(behind) + kPi - turn);
+    points.insert(points.begin(), Vec2(std::round(down.x()), std::round(down.y())));
+    points.push_back(Vec2(std::round(up.x()), std::round(up.y())));
+    const Stroke raw = strokeOf(points);
+    const CleanStroke c = cleanStroke(raw);
+    expectConsistent(raw, c);
+    EXPECT_EQ(c.trimmed_start, 1u) << describe(c);
+    EXPECT_EQ(c.trimmed_end, 1u) << describe(c);
+  }
+  std::vector<Vec2> points = arc;
+  const Vec2 side = arc.front() + 2.0 * Vec2(-ahead.y(), ahead.x());
+  points.insert(points.begin(), Vec2(std::round(side.x()), std::round(side.y())));
+  const CleanStroke c = cleanStroke(strokeOf(points));
+  EXPECT_EQ(c.trimmed_start, 0u) << describe(c);
+}
+
 // --- closed strokes ------------------------------------------------------------------
 
 /// A circle of radius 50 drawn from angle 0 through 2 pi + overshoot, its radius growing
