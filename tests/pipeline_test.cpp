@@ -634,7 +634,8 @@ TEST_P(PipelineTruthTest, AlphaMatchesTheTruthAsFarAsThePointsDetermineIt) {
     for (double d : distancesToCurve(c, truth.noisy, truth.diagonal, kPolylineSagitta)) sum += d * d;
     return sum;
   };
-  stats().ssr_ratios.push_back(ssr(r.curve) / ssr(truth.curve));
+  const double ssr_ratio = ssr(r.curve) / ssr(truth.curve);
+  stats().ssr_ratios.push_back(ssr_ratio);
   const std::vector<int> match = matchSegments(r.curve, truth);
   for (std::size_t i = 0; i < r.curve.pieces.size(); ++i) {
     const LaSegment& truth_seg = truth.curve.pieces[match[i]].segment;
@@ -651,7 +652,8 @@ TEST_P(PipelineTruthTest, AlphaMatchesTheTruthAsFarAsThePointsDetermineIt) {
     std::snprintf(buf, sizeof buf, " %zu->%d:%.2f/%.2f(%.2f)", i, match[i], got, want, se);
     alphas += buf;
   }
-  std::printf("[ case     ] %-28s alpha fit/truth(standard error)%s\n", caseName(index, transform).c_str(), alphas.c_str());
+  std::printf("[ case     ] %-28s SSR fit/truth %.3f, alpha fit/truth(standard error)%s\n", caseName(index, transform).c_str(),
+              ssr_ratio, alphas.c_str());
   if (HasFailure()) std::printf("%s\n%s\n", describeTruth(truth).c_str(), describeFit(r).c_str());
 }
 
