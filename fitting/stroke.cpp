@@ -714,6 +714,14 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     if (pts.size() < measured) scales = measureScales(pts.p, result.closed, options);
     else scales.window = cornerWindow(pts.p, result.closed, scales.noise, options);
     result.corners = findCorners(pts.p, result.closed, scales.window, options);
+    if (options.corners_only_at_ends || raw.profile) {
+      const std::vector<double> s = arcLengths(pts.p);
+      const double closing = result.closed ? (pts.p.front() - pts.p.back()).norm() : INFINITY;
+      std::erase_if(result.corners, [&](std::size_t c) {
+        const double to_first = std::min(s[c], s.back() - s[c] + closing), to_last = std::min(s.back() - s[c], s[c] + closing);
+        return std::min(to_first, to_last) >= scales.window;
+      });
+    }
   }
   if (result.closed && !result.corners.empty()) {
     const std::size_t n = pts.size();

@@ -11,10 +11,11 @@
 //  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
 //    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
 //    relative);
-//  - glyph contours (fitted with assume_closed, see kDataSets) and the $1 'circle'
-//    gestures come out closed (curve.closed);
+//  - glyph contours (fitted with assume_closed, see kDataSets), the airfoils and the $1
+//    'circle' gestures come out closed (curve.closed);
 //  - the $1 caret, v, rectangle, triangle and star keep their corners
-//    (quality.corners >= 1; the rectangle >= 3).
+//    (quality.corners >= 1; the rectangle >= 3); an airfoil has one, its trailing edge
+//    (its nose is round: a .dat is a profile, Stroke::profile).
 // One test per data set; it prints, per set, the worst ratio max_dev / tolerance (file
 // and stroke), how often the tolerance was raised to the noise floor, and every failure
 // with the file, the stroke index and the FitResult warnings.
@@ -22,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -144,12 +146,14 @@ std::string warningsOf(const FitResult& r) {
 struct Expectation {
   bool closed = false;
   int min_corners = 0;
+  int max_corners = INT_MAX;
 };
 
 Expectation expectationFor(const std::string& dataset, const fs::path& file) {
   Expectation e;
   const std::string stem = file.stem().string();
   if (dataset == "glyphs") e.closed = true;
+  if (dataset == "airfoils") e.closed = true, e.min_corners = e.max_corners = 1;  // the trailing edge; a round nose
   if (dataset == "dollar1") {
     if (stem == "circle") e.closed = true;
     if (stem == "caret" || stem == "v" || stem == "triangle" || stem == "star") e.min_corners = 1;
@@ -247,6 +251,8 @@ void fitDataSet(const DataSet& set) {
         EXPECT_TRUE(check(r.quality.corners >= expect.min_corners, "corners lost"))
             << where << ": " << r.quality.corners << " corners, expected at least " << expect.min_corners;
       }
+      EXPECT_TRUE(check(r.quality.corners <= expect.max_corners, "corners added"))
+          << where << ": " << r.quality.corners << " corners, expected at most " << expect.max_corners;
       if (!broken.empty()) {
         ++failed;
         std::printf("[ failure  ] %s: %s | %d segments, closed %d, corners %d, max_dev %.4g, tolerance %.4g "

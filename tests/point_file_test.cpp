@@ -271,6 +271,8 @@ TEST(PointFileDat, SeligNameLineThenOneProfile) {
   ASSERT_EQ(strokes.size(), 1u);  // blank lines do not split a profile
   ASSERT_EQ(strokes[0].samples.size(), 4u);
   EXPECT_EQ(strokes[0].samples[3].p, Vec2(0.5, -0.05));
+  EXPECT_TRUE(strokes[0].profile);  // (corners only at its trailing edge)
+  EXPECT_FALSE(parseStrokes("1 0\n0 0.1\n0 0.2\n", "not_a_profile.csv")[0].profile);
   // Without a name line the numbers are points too.
   EXPECT_EQ(parseStrokes("1 0\n0 0.1\n", "bare.DAT")[0].samples.size(), 2u);
 }
@@ -294,7 +296,7 @@ TEST(PointFileDat, LoneCarriageReturnsEndLines) {
 TEST(PointFileJson, StrokesWithOptionalTimeAndPressure) {
   const std::string text = R"({"strokes": [
       {"points": [[0, 0], [1, 2.5]], "t": [0, 16], "pressure": [0.5, null]},
-      {"points": [[3, 4], [5, 6], [7, 8]], "id": "ignored"},
+      {"points": [[3, 4], [5, 6], [7, 8]], "id": "ignored", "profile": true},
       {"points": []}
     ]})";
   const std::vector<Stroke> strokes = parseStrokes(text, "s.json");
@@ -306,6 +308,8 @@ TEST(PointFileJson, StrokesWithOptionalTimeAndPressure) {
   EXPECT_TRUE(std::isnan(strokes[0].samples[1].pressure));
   ASSERT_EQ(strokes[1].samples.size(), 3u);
   EXPECT_TRUE(std::isnan(strokes[1].samples[2].t));
+  EXPECT_FALSE(strokes[0].profile);
+  EXPECT_TRUE(strokes[1].profile);
   EXPECT_TRUE(strokes[2].samples.empty());
 }
 
@@ -324,6 +328,8 @@ TEST(PointFileJson, Errors) {
   expectError(R"({"strokes": [{"points": [[1, 2]], "pressure": ["hard"]}]})", "pr.json",
               {"pr.json:", "strokes[0].pressure[0]"});
   expectError(R"({"strokes": [{"points": []}]})", "none.json", {"none.json: no points"});
+  expectError(R"({"strokes": [{"points": [[1, 2]], "profile": "yes"}]})", "pf.json",
+              {"pf.json:", "strokes[0].profile", "true or false"});
 }
 
 TEST(PointFileJson, NumberOutOfRangeNamesFileLineAndNumber) {

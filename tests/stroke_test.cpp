@@ -479,6 +479,35 @@ TEST(CleanStroke, TrimsAPenDownBackStepShorterThanAHook) {
   EXPECT_EQ(c.trimmed_start, 0u) << describe(c);
 }
 
+// --- profiles ----------------------------------------------------------------------
+
+TEST(CleanStroke, AProfileHasItsCornerAtTheTrailingEdgeOnly) {
+  // NACA 0012 as a Selig .dat lists it: from the trailing edge over the upper surface to
+  // the leading edge and back, 17 cosine-spaced stations a side, 4 decimals. Its nose
+  // (radius 0.016) turns over a corner window as a corner does; as a profile it is
+  // round, and the trailing edge its one corner.
+  std::vector<Vec2> foil;
+  const int stations = 17;
+  auto thickness = [](double x) {
+    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x - 0.1015 * x * x * x * x);
+  };
+  for (int k = -stations; k < stations; ++k) {  // (upper k < 0, TE to LE; lower k >= 0)
+    const int j = k < 0 ? k + stations : stations - 1 - k;
+    const double x = 0.5 * (1.0 + std::cos(kPi * j / (stations - 0.5))), side = k < 0 ? 1.0 : -1.0;
+    foil.emplace_back(std::round(1e4 * x) / 1e4, std::round(1e4 * side * thickness(x)) / 1e4);
+  }
+  Stroke raw = strokeOf(foil);
+  const CleanStroke drawn = cleanStroke(raw);
+  EXPECT_TRUE(drawn.closed);
+  EXPECT_EQ(drawn.corners.size(), 2u) << describe(drawn);  // (read as a drawing, the nose too)
+  raw.profile = true;
+  const CleanStroke profile = cleanStroke(raw);
+  expectConsistent(raw, profile);
+  EXPECT_TRUE(profile.closed);
+  ASSERT_EQ(profile.corners.size(), 1u) << describe(profile);
+  EXPECT_GT(profile.points[profile.corners[0]].x(), 0.99) << describe(profile);  // (the trailing edge)
+}
+
 // --- closed strokes ------------------------------------------------------------------
 
 /// A circle of radius 50 drawn from angle 0 through 2 pi + overshoot, its radius growing

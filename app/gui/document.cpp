@@ -209,6 +209,7 @@ void Document::save(const QString& path) const {
     for (const auto& [piece, alpha] : s.alpha_overrides) overrides[std::to_string(piece)] = alpha;
     strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"tilt", tilt}, {"alpha_overrides", overrides},
                        {"joint_overrides", pointsToJson(s.joint_overrides)}, {"apex_overrides", pointsToJson(s.apex_overrides)}});
+    if (s.raw.profile) strokes.back()["profile"] = true;
     curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
   nlohmann::json constructions = nlohmann::json::array();
@@ -252,6 +253,7 @@ void Document::load(const QString& path, bool provisional) {
       }
       raw.samples.push_back(s);
     }
+    raw.profile = strokes[i].value("profile", false);
     std::map<int, double> overrides;
     const nlohmann::json saved = strokes[i].value("alpha_overrides", nlohmann::json::object());
     for (const auto& [key, value] : saved.items()) overrides[std::stoi(key)] = value.get<double>();

@@ -16,12 +16,13 @@
 //    them, and the stroke clean-up would only drop them silently.
 //  - Airfoil .dat (Selig): a name line, then "x y" lines, trailing edge over the upper
 //    surface to the leading edge and back; blank lines are ignored and the file is one
-//    stroke. A file without a name line reads the same. Lednicer files (a name line,
+//    stroke, a profile (Stroke::profile: corners only at its ends, the trailing edge). A file without a name line reads the same. Lednicer files (a name line,
 //    then a line of two point counts) are refused with a message saying so, rather
 //    than read as a profile with a bogus first point.
 //  - JSON: {"strokes": [{"points": [[x, y], ...], "t": [...], "pressure": [...]}]};
 //    t and pressure are optional, must have one entry per point, and may hold null
-//    for an unknown value (nlohmann writes NaN as null). Unknown keys are ignored. A
+//    for an unknown value (nlohmann writes NaN as null); "profile": true marks a
+//    profile (Stroke::profile). Unknown keys are ignored. A
 //    stroke with no points is kept, so stroke indices match the file. Syntax errors
 //    give line and column; schema errors name the stroke and the key
 //    ("strokes[2].t: 3 values for 5 points"); nlohmann does not keep positions of
@@ -433,6 +434,10 @@ std::vector<Stroke> parseJson(const std::string& text, const std::string& name) 
           failFile(name, at + "[" + std::to_string(j) + "]: expected a number or null");
         stroke.samples[j].*(key == "t" ? &StrokeSample::t : &StrokeSample::pressure) = v;
       }
+    }
+    if (item.contains("profile")) {
+      if (!item["profile"].is_boolean()) failFile(name, where + ".profile: expected true or false");
+      stroke.profile = item["profile"].get<bool>();
     }
     total += stroke.samples.size();
     strokes.push_back(std::move(stroke));
@@ -1168,7 +1173,11 @@ std::vector<Stroke> parseStrokes(const std::string& text, const std::string& nam
   const std::string extension = lower(std::filesystem::path(name).extension().string());
   if (extension == ".json") return parseJson(text, name);
   if (extension == ".svg") return SvgScanner(text, name).read();
-  if (extension == ".dat") return parseDelimited(text, name, /*airfoil=*/true);
+  if (extension == ".dat") {
+    std::vector<Stroke> profiles = parseDelimited(text, name, /*airfoil=*/true);
+    for (Stroke& s : profiles) s.profile = true;
+    return profiles;
+  }
   return parseDelimited(text, name, /*airfoil=*/false);
 }
 

@@ -16,7 +16,8 @@ constexpr const char* kHelp = R"(usage: lafit fit INPUT [options]
 Fairs every stroke of INPUT into a curve of log-aesthetic segments with continuous
 curvature, and prints its quality figures. INPUT is a point file (.csv/.txt: x,y[,t[,p]]
 per line, a blank line between strokes; airfoil .dat), the project's stroke .json, or
-an .svg (path, polyline and polygon elements).
+an .svg (path, polyline and polygon elements). An airfoil .dat is a profile: its only
+corner is its trailing edge (its first and last points), its nose is round.
 
 outputs:
   -o FILE.json    the curves (shared format) with quality figures and timings

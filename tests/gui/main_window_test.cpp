@@ -244,6 +244,21 @@ TEST_F(MainWindowTest, SaveAndReopenGivesTheSameCurves) {
   }
 }
 
+// An airfoil .dat is a profile: its trailing edge is its one corner, its nose is round,
+// also after the sketch is saved and opened again.
+TEST_F(MainWindowTest, AnImportedProfileKeepsItsRoundNoseAcrossSaveAndReopen) {
+  ASSERT_TRUE(window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/curves/airfoils/clark-y.dat"));
+  EXPECT_EQ(lastFit().quality.corners, 1);
+  const QString path = dir.filePath("foil.lafair.json");
+  ASSERT_TRUE(window->saveFile(path));
+  MainWindow other;
+  ASSERT_TRUE(other.openFile(path));
+  other.finishBackgroundFits();
+  ASSERT_EQ(other.document().strokes().size(), 1u);
+  EXPECT_TRUE(other.document().strokes()[0].raw.profile);
+  EXPECT_EQ(other.document().strokes()[0].fit->quality.corners, 1);
+}
+
 TEST_F(MainWindowTest, ImportEveryFileTypeAndExportEveryFormat) {
   const QString data = QString(LAFAIR_SHARED_DATA_DIR);
   for (const char* f : {"/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv", "/curves/airfoils/clark-y.dat",
