@@ -1269,7 +1269,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // open stroke, corners[k + 1] of a closed one, whose corners[0] is its start; a
   // closed stroke's only corner joins its one part to itself.)
   const bool closed = r.cleaned.closed;
-  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (closed && parts.size() == 1 && k == 0));) {
+  // (a closed stroke's one part has a seam corner only if the clean-up found corners:
+  // without, its points do not end with the start again)
+  const bool seam_corner = closed && parts.size() == 1 && !r.cleaned.corners.empty();
+  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (seam_corner && k == 0));) {
     const bool seam = k + 1 == parts.size();
     const PartFit& next = seam ? fits[0] : fits[k + 1];
     if (fits[k].max_dev <= r.tolerance && next.max_dev <= r.tolerance) {
