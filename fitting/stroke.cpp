@@ -715,10 +715,12 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     else scales.window = cornerWindow(pts.p, result.closed, scales.noise, options);
     result.corners = findCorners(pts.p, result.closed, scales.window, options);
     if (options.corners_only_at_ends || raw.profile) {
+      // (arc lengths to the first and the last point, round the closing step if closed)
       const std::vector<double> s = arcLengths(pts.p);
       const double closing = result.closed ? (pts.p.front() - pts.p.back()).norm() : INFINITY;
       std::erase_if(result.corners, [&](std::size_t c) {
-        const double to_first = std::min(s[c], s.back() - s[c] + closing), to_last = std::min(s.back() - s[c], s[c] + closing);
+        const double to_first = std::min(s[c], s.back() - s[c] + closing);
+        const double to_last = std::min(s.back() - s[c], s[c] + closing);
         return std::min(to_first, to_last) >= scales.window;
       });
     }

@@ -16,14 +16,15 @@
 //    them, and the stroke clean-up would only drop them silently.
 //  - Airfoil .dat (Selig): a name line, then "x y" lines, trailing edge over the upper
 //    surface to the leading edge and back; blank lines are ignored and the file is one
-//    stroke, a profile (Stroke::profile: corners only at its ends, the trailing edge). A file without a name line reads the same. Lednicer files (a name line,
-//    then a line of two point counts) are refused with a message saying so, rather
-//    than read as a profile with a bogus first point.
+//    stroke, a profile (Stroke::profile: corners only at its ends, the trailing edge).
+//    A file without a name line reads the same. Lednicer files (a name line, then a
+//    line of two point counts) are refused with a message saying so, rather than read
+//    as a profile with a bogus first point.
 //  - JSON: {"strokes": [{"points": [[x, y], ...], "t": [...], "pressure": [...]}]};
 //    t and pressure are optional, must have one entry per point, and may hold null
 //    for an unknown value (nlohmann writes NaN as null); "profile": true marks a
-//    profile (Stroke::profile). Unknown keys are ignored. A
-//    stroke with no points is kept, so stroke indices match the file. Syntax errors
+//    profile (Stroke::profile). Unknown keys are ignored. A stroke with no points is
+//    kept, so stroke indices match the file. Syntax errors
 //    give line and column; schema errors name the stroke and the key
 //    ("strokes[2].t: 3 values for 5 points"); nlohmann does not keep positions of
 //    values, so those have no line.

@@ -7,10 +7,11 @@
 //    kind of separator per line, so decimal commas are refused); Omniglot's START /
 //    BREAK lines are understood. NaN or infinite values are errors;
 //  - airfoil `.dat` (Selig): a name line, then `x y` lines; one profile (blank lines
-//    ignored; Lednicer files are refused with a message saying so);
+//    ignored; Lednicer files are refused with a message saying so), read with
+//    Stroke::profile set: its only corner is its trailing edge;
 //  - the project's stroke JSON: {"strokes": [{"points": [[x, y], ...], "t": [...],
-//    "pressure": [...]}, ...]} (t and pressure optional, one entry per point, null for
-//    unknown);
+//    "pressure": [...], "profile": true}, ...]} (t, pressure and profile optional, t
+//    and pressure one entry per point, null for unknown);
 //  - SVG: <path> (M/L/H/V/C/S/Q/T/A/Z, absolute and relative) and <polyline>/<polygon>
 //    elements, flattened to points on the exact curves at most 0.5% of the element's
 //    bounding-box diagonal apart; each subpath is a stroke. A closed subpath (Z,
