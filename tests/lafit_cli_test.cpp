@@ -527,6 +527,12 @@ TEST_F(LafitCli, FitReadsAnAirfoilDat) {
   // One profile: the document is the curve itself.
   EXPECT_FALSE(document.contains("curves"));
   expectFittedCurves(curvesOf(document), 1);
+  // A closed profile with one corner, its trailing edge (where it starts); its nose round.
+  EXPECT_TRUE(document.at("closed").get<bool>());
+  int corners = 0;
+  for (const json& segment : document.at("segments")) corners += segment.value("corner", false) ? 1 : 0;
+  EXPECT_EQ(corners, 1);
+  EXPECT_TRUE(document.at("segments").front().value("corner", false));
 }
 
 TEST_F(LafitCli, FitReadsAStrokeJsonFile) {
