@@ -322,9 +322,10 @@ bool straightLegs(const Polyline& line, std::ptrdiff_t i, const Polyline::Turn& 
 
 /// Deliberate corners: turn over the window above corner_min_angle, sharp, then
 /// non-maximum suppression (strongest first) and each placed on the point farthest from
-/// the chord (segment) across its window.
+/// the chord (segment) across its window. With `ends_only` (a profile), only those
+/// within one window of the first or last point are kept.
 std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, double w,
-                                     const CleanupOptions& options) {
+                                     const CleanupOptions& options, bool ends_only) {
   const Polyline line(p, closed);
   const std::ptrdiff_t n = line.size();
   constexpr int kMinSideSamples = 2;  // the brief: at least 2 samples a side
@@ -374,6 +375,8 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
     });
     if (!suppressed) accepted.push_back(vertex);
   }
+  if (ends_only)
+    std::erase_if(accepted, [&](std::ptrdiff_t v) { return std::min(line.distance(v, 0), line.distance(v, n - 1)) >= w; });
   std::vector<std::size_t> corners(accepted.begin(), accepted.end());
   std::sort(corners.begin(), corners.end());
   return corners;
@@ -713,17 +716,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   if (options.detect_corners) {
     if (pts.size() < measured) scales = measureScales(pts.p, result.closed, options);
     else scales.window = cornerWindow(pts.p, result.closed, scales.noise, options);
-    result.corners = findCorners(pts.p, result.closed, scales.window, options);
-    if (options.corners_only_at_ends || raw.profile) {
-      // (arc lengths to the first and the last point, round the closing step if closed)
-      const std::vector<double> s = arcLengths(pts.p);
-      const double closing = result.closed ? (pts.p.front() - pts.p.back()).norm() : INFINITY;
-      std::erase_if(result.corners, [&](std::size_t c) {
-        const double to_first = std::min(s[c], s.back() - s[c] + closing);
-        const double to_last = std::min(s.back() - s[c], s[c] + closing);
-        return std::min(to_first, to_last) >= scales.window;
-      });
-    }
+    result.corners = findCorners(pts.p, result.closed, scales.window, options, raw.profile);
   }
   if (result.closed && !result.corners.empty()) {
     const std::size_t n = pts.size();

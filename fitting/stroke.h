@@ -54,8 +54,10 @@ struct StrokeSample {
 
 struct Stroke {
   std::vector<StrokeSample> samples;
-  /// A profile (read from an airfoil .dat): corners only at its ends
-  /// (CleanupOptions::corners_only_at_ends).
+  /// A profile (read from an airfoil .dat: from the trailing edge round the leading
+  /// edge and back): the clean-up keeps corners only within one corner window of its
+  /// first or last point. A round leading edge sampled a few points across turns like a
+  /// corner over the window.
   bool profile = false;
 };
 
@@ -94,11 +96,6 @@ struct CleanupOptions {
   bool detect_corners = true;
   double corner_min_angle = 1.0;  // radians (~57 degrees)
   double corner_window = 0.03;
-  /// A profile (an airfoil: from the trailing edge round the leading edge and back):
-  /// corners only within one corner window of its first or last point. A round leading
-  /// edge sampled a few points across turns like a corner over the window. Also for
-  /// every stroke with Stroke::profile.
-  bool corners_only_at_ends = false;
   /// Closed: the end comes back within this fraction of the bounding-box diagonal of
   /// the start (or runs past it within that distance, or crosses its normal line within
   /// twice that distance); the overlap is cut and the curve closes.
