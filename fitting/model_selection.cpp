@@ -411,14 +411,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   auto splitAtWorst = [&](const ChainFitResult& from) {
     const std::size_t worst = std::max_element(from.distance.begin(), from.distance.end()) - from.distance.begin();
     const ChainFoot at = from.feet[worst];
-    // (a line bends towards the worst point: the arc through its ends with that sagitta)
     const LaSegment& s = from.segments[at.segment];
-    const double side = cross(s.tangent(at.u * s.length()), points[worst] - s.position(at.u * s.length()));
-    const double bend = 8.0 * side / (s.length() * s.length());
     const double u = std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin);
     ++edits;
-    return attempt(s.isStraight() ? bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed)
-                             : split(from.segments, from.feet, out.corners, at.segment, u));
+    if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u));
+    // (a line bends towards the worst point: the arc through its ends with that sagitta)
+    const double side = cross(s.tangent(at.u * s.length()), points[worst] - s.position(at.u * s.length()));
+    const double bend = 8.0 * side / (s.length() * s.length());
+    return attempt(bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed));
   };
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
   auto helps = [&](const std::optional<Attempt>& r) {
