@@ -343,8 +343,8 @@ TEST_F(LafitCli, FitWritesJsonSvgCsvDxfAndPrintsTheQualityTable) {
 }
 
 TEST_F(LafitCli, IndependentCheckerFindsTheFitG2AndAsCloseAsLafitSays) {
-  if (!fs::exists(kPython) || !fs::exists(kLacheck)) GTEST_SKIP() << "no " << kPython << " or " << kLacheck;
-  if (run({kPython.string(), "-c", "import numpy"}).status != 0) GTEST_SKIP() << "python3 has no numpy";
+  ASSERT_TRUE(fs::exists(kPython) && fs::exists(kLacheck)) << "no " << kPython << " or " << kLacheck << " (scripts/setup.sh installs python3-numpy)";
+  ASSERT_EQ(run({kPython.string(), "-c", "import numpy"}).status, 0) << "python3 has no numpy";
   copyData(kBrace, "brace.csv");
   const Outcome r = lafit({"fit", "brace.csv", "--stages", "-o", "curve.json"});
   ASSERT_EQ(r.status, 0) << r;
@@ -387,8 +387,8 @@ TEST_F(LafitCli, IndependentCheckerFindsTheFitG2AndAsCloseAsLafitSays) {
 // what it kept (each kept point's raw sample in "source", the count cut), so lacheck
 // can measure lafit's max_dev on the same points: within the tolerance, G2, closed.
 TEST_F(LafitCli, StagesNameThePointsKeptSoTheCheckerMeasuresTheSame) {
-  if (!fs::exists(kPython) || !fs::exists(kLacheck)) GTEST_SKIP() << "no " << kPython << " or " << kLacheck;
-  if (run({kPython.string(), "-c", "import numpy"}).status != 0) GTEST_SKIP() << "python3 has no numpy";
+  ASSERT_TRUE(fs::exists(kPython) && fs::exists(kLacheck)) << "no " << kPython << " or " << kLacheck << " (scripts/setup.sh installs python3-numpy)";
+  ASSERT_EQ(run({kPython.string(), "-c", "import numpy"}).status, 0) << "python3 has no numpy";
   copyData("strokes/dollar1_unistroke_s01_pilot/csv/slow/circle.csv", "circle.csv");
   const Outcome r = lafit({"fit", "circle.csv", "--stages", "-o", "curve.json"});
   ASSERT_EQ(r.status, 0) << r;

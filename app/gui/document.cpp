@@ -6,6 +6,7 @@
 
 #include "app/io/fit_json.h"
 #include "core/atomic_file.h"
+#include "fitting/user_edits.h"
 #include "nlohmann/json.hpp"
 
 namespace la::gui {

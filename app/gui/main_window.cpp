@@ -33,6 +33,7 @@
 #include "app/io/point_file.h"
 #include "core/atomic_file.h"
 #include "core/curve_json.h"
+#include "fitting/user_edits.h"
 
 namespace la::gui {
 namespace {

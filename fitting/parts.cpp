@@ -1,0 +1,84 @@
+#include "fitting/parts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fitting/quality.h"
+
+namespace la {
+namespace {
+
+// A step longer than this many median steps is a gap the fit fills (fillGaps).
+constexpr double kGapSteps = 10.0;
+// Resolution of maxDeviationOf (relative to the diagonal; 500 times below the default
+// tolerance; the reported figures use 1e-6).
+constexpr double kDeviationResolution = 1e-5;
+
+
+// Points along every step of `p` (and the closing step of a closed part) longer than
+// kGapSteps times `spacing`, that far apart. A long step is a straight edge the data
+// do not sample (a font outline's closing stem, a polygon's side) or samples the
+// digitizer lost: the points' own polyline is the best guess there, and without points
+// along it a fit may loop through the gap. Fits use these; quality is measured on the
+// data alone.
+std::vector<Vec2> fillGaps(const std::vector<Vec2>& p, bool closed, double spacing) {
+  std::vector<Vec2> out;
+  const std::size_t steps = closed ? p.size() : p.size() - 1;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out.push_back(p[i]);
+    if (i >= steps) continue;
+    const Vec2 a = p[i], b = p[(i + 1) % p.size()];
+    const double length = (b - a).norm();
+    if (!(length > kGapSteps * spacing)) continue;
+    const int pieces = static_cast<int>(std::ceil(length / spacing));
+    for (int k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / pieces));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Part> splitAtCorners(const CleanStroke& c) {
+  const auto& p = c.points;
+  const double spacing = medianStep(p);
+  if (c.corners.empty()) return {Part{fillGaps(p, c.closed, spacing), c.closed, false}};
+  std::vector<std::size_t> cuts = c.corners;
+  if (!c.closed) {
+    cuts.insert(cuts.begin(), 0);
+    cuts.push_back(p.size() - 1);
+  } else {
+    cuts.push_back(p.size());  // back to the start (a corner at index 0)
+  }
+  std::vector<Part> parts;
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    Part part;
+    for (std::size_t i = cuts[k]; i <= cuts[k + 1]; ++i) part.points.push_back(p[i % p.size()]);
+    part.points = fillGaps(part.points, false, spacing);
+    part.starts_at_corner = c.closed || k > 0;
+    part.ends_at_corner = c.closed || k + 2 < cuts.size();
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
+bool withinChord(const std::vector<Vec2>& pts, double tol) {
+  const Vec2 a = pts.front(), b = pts.back();
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  if (!(len > 0.0)) return false;
+  for (const Vec2& p : pts) {
+    const double along = (p - a).dot(d) / len;
+    if (along < -tol || along > len + tol || std::abs(cross(d, p - a)) / len > tol) return false;
+  }
+  return true;
+}
+
+double maxDeviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
+  Curve curve;
+  for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
+  double worst = 0.0;
+  for (double d : distancesToCurve(curve, points, diag, kDeviationResolution)) worst = std::max(worst, d);
+  return worst;
+}
+
+}  // namespace la

@@ -1,0 +1,177 @@
+#include "fitting/spline_chain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "fitting/chain_fit.h"
+#include "fitting/paper_stages.h"
+
+namespace la {
+namespace {
+
+// The chain stage 7 starts from where stages 5-6 found none (a piece whose tangents form
+// no control triangle, a joint no tangent angle makes G2): read off the spline in
+// intrinsic form. A piece turning against both its neighbours (between two inflections)
+// is cut at its largest curvature first (`spans` is updated). Each piece turns as the
+// spline does between its splits; a joint's curvature is 0 where the turning direction
+// changes (an inflection), else the spline's (a small value of the piece's sign where the
+// spline's has the other) to start with, then adjusted as each segment is shot towards
+// the next split point (below). G2 by construction; empty if some piece has no LA
+// segment. `length`: the spline's length between each piece's splits.
+std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
+                                 double min_alpha, double max_alpha, std::vector<double>& length) {
+  constexpr int kSteps = 16;           // per piece, for its turning and length
+  constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
+  auto measure = [&](double t0, double t1, double& turning, double& length) {
+    double prev = splineTangentAngle(spline, spline.wrap(t0));
+    Vec2 p = spline.point(spline.wrap(t0));
+    turning = length = 0.0;
+    for (int k = 1; k <= kSteps; ++k) {
+      const double t = spline.wrap(t0 + (t1 - t0) * k / kSteps);
+      const double a = splineTangentAngle(spline, t);
+      turning += wrapAngle(a - prev);
+      prev = a;
+      const Vec2 q = spline.point(t);
+      length += (q - p).norm();
+      p = q;
+    }
+  };
+  auto sign = [](double v) { return v < 0.0 ? -1.0 : 1.0; };
+  std::vector<double> turning;
+  for (bool again = true; again;) {
+    again = false;
+    const std::size_t n = spans.size();
+    turning.assign(n, 0.0);
+    length.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
+    for (std::size_t i = 0; i < n && n >= 3; ++i) {
+      const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
+      if (!has_before || !has_after) continue;
+      const double s = sign(turning[i]);
+      if (sign(turning[(i + n - 1) % n]) == s || sign(turning[(i + 1) % n]) == s) continue;
+      double best_t = 0.5 * (spans[i].t0 + spans[i].t1), best = 0.0;
+      for (int k = 1; k < kSteps; ++k) {
+        const double t = spans[i].t0 + (spans[i].t1 - spans[i].t0) * k / kSteps;
+        const double kappa = std::abs(spline.curvature(spline.wrap(t)));
+        if (kappa > best) best = kappa, best_t = t;
+      }
+      PieceReport second = spans[i];
+      spans[i].t1 = second.t0 = best_t;
+      spans[i].end_kind = second.start_kind = SplitKind::kExtremum;
+      spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(i) + 1, second);
+      again = true;
+      break;
+    }
+  }
+  const std::size_t n = spans.size(), joints = closed ? n : n + 1;
+  std::vector<double> kappa(joints, 0.0);
+  for (std::size_t j = 0; j < joints; ++j) {
+    const bool has_before = closed || j > 0, has_after = closed || j < n;
+    const std::size_t before = (j + n - 1) % n, after = j % n;
+    if (has_before && has_after && sign(turning[before]) != sign(turning[after])) continue;  // inflection: 0
+    const std::size_t piece = has_after ? after : before;
+    const double s = sign(turning[piece]);
+    const double k = spline.curvature(spline.wrap(has_after ? spans[after].t0 : spans[before].t1));
+    const double mean = std::abs(turning[piece]) / std::max(length[piece], 1e-300);
+    kappa[j] = sign(k) == s && std::abs(k) > kSmallKappa * mean ? k : s * kSmallKappa * mean;
+  }
+  // Shoot segment by segment: each starts where the previous ended (tangent and
+  // curvature continuous), turns as the spline does between its splits, and takes the
+  // end curvature and alpha that bring its end closest to the next split point (Gauss-
+  // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
+  // then follows the spline's joints instead of drifting with its curvature errors.
+  std::vector<LaSegment> chain;
+  Vec2 start = spline.point(spline.wrap(spans.front().t0));
+  double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
+    const bool free_end = kappa[(i + 1) % joints] != 0.0;
+    const double end_sign = sign(turning[i]);
+    const Vec2 target = spline.point(spline.wrap(spans[i].t1));
+    // unknowns: y = log|kappa_end| (when not an inflection), alpha
+    double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
+    const bool zero_end = k0 == 0.0 || !free_end;
+    const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
+    double alpha = zero_end ? -1.0 : kStage7StartAlpha;
+    auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
+      const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
+      try {
+        return LaSegment::withTurning(aa, turning[i], start, theta, k0, k1);
+      } catch (const std::invalid_argument&) {
+        return std::nullopt;
+      }
+    };
+    auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
+      const auto seg = build(yy, aa);
+      if (!seg) return std::nullopt;
+      return Vec2(seg->end() - target);
+    };
+    constexpr int kShootingSteps = 8;
+    constexpr double kStep = 1e-4;
+    for (int it = 0; it < kShootingSteps; ++it) {
+      const auto r = miss(y, alpha);
+      if (!r) break;
+      Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
+      const auto ra = miss(y, alpha + kStep);
+      if (!ra) break;
+      jac.col(1) = (*ra - *r) / kStep;
+      if (free_end) {
+        const auto ry = miss(y + kStep, alpha);
+        if (!ry) break;
+        jac.col(0) = (*ry - *r) / kStep;
+      }
+      // least-squares step, damped a little, both unknowns limited in size
+      Eigen::Matrix2d a = jac.transpose() * jac;
+      a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
+      const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
+      if (!step.allFinite()) break;
+      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), lo, hi);
+      const auto rn = miss(ny, na);
+      if (!rn || rn->norm() >= r->norm()) break;
+      y = ny;
+      alpha = na;
+    }
+    const auto seg = build(y, alpha);
+    if (!seg) return {};
+    chain.push_back(*seg);
+    start = chain.back().end();
+    theta = chain.back().theta(chain.back().length());
+  }
+  return chain;
+}
+
+}  // namespace
+
+// shotChain; with `halve`, where a shot segment is far longer or shorter than the
+// spline between its splits, it has set off away from the points (its start curvature,
+// the previous one's end, does not suit it): its span is halved (at an inflection
+// inside if any) and the chain shot again, at most kMaxHalvings times.
+std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
+                                       double min_alpha, double max_alpha, bool halve) {
+  constexpr double kShotLengthRatio = 2.0;
+  constexpr int kMaxHalvings = 6;
+  for (int halvings = 0;; ++halvings) {
+    std::vector<double> length;
+    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, length);
+    const std::size_t n = chain.size();
+    std::size_t astray = n;
+    for (std::size_t i = 0; i < n && astray == n; ++i)
+      if (!(chain[i].length() < kShotLengthRatio * length[i] && kShotLengthRatio * chain[i].length() > length[i])) astray = i;
+    if (!halve || astray == n || halvings >= kMaxHalvings) return chain;
+    const double t0 = spans[astray].t0, t1 = spans[astray].t1;
+    double t = halvingPoint(spline, t0, t1).t;
+    if (t < t0) t += spline.tMax() - spline.tMin();  // (wrapped past a closed spline's seam)
+    if (!(t > t0 && t < t1)) return chain;
+    PieceReport second = spans[astray];
+    spans[astray].t1 = second.t0 = t;
+    spans[astray].end_kind = second.start_kind = SplitKind::kTurning;
+    spans.insert(spans.begin() + static_cast<std::ptrdiff_t>(astray) + 1, second);
+  }
+}
+
+
+}  // namespace la

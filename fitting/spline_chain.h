@@ -1,0 +1,23 @@
+#pragma once
+// Stage 7's start where stages 5-6 found no G2 chain (a piece whose tangents form no
+// control triangle, a joint no tangent angle makes G2): a chain read off the smoothing
+// spline in intrinsic form, segment by segment, each shot from the previous one's end
+// towards the next split point. G2 by construction.
+
+#include <vector>
+
+#include "core/bspline.h"
+#include "core/la_segment.h"
+#include "fitting/pipeline.h"
+
+namespace la {
+
+/// The chain over the spline's pieces `spans` (spline parameters t0, t1 per piece; a
+/// piece turning against both its neighbours is cut at its largest curvature, and
+/// `spans` updated). With `halve`, where a shot segment comes out far longer or shorter
+/// than the spline between its splits (it set off away from the points), its span is
+/// halved and the chain shot again. Empty if some piece has no LA segment.
+std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
+                                       double min_alpha, double max_alpha, bool halve);
+
+}  // namespace la

@@ -1,0 +1,338 @@
+#include "fitting/stage7.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fitting/model_selection.h"
+#include "fitting/paper_stages.h"
+#include "fitting/quality.h"
+#include "fitting/spline_chain.h"
+
+namespace la {
+namespace {
+
+// Stage 7's fit: points it iterates on (bins of the points, ChainFitOptions::max_points)
+// and Levenberg-Marquardt steps per fit. Measured on the ground-truth chains
+// (tests/pipeline_test.cpp) and the shared data: fewer points lose alpha accuracy on
+// clean strokes (where nothing is binned); 8 more steps on the chosen chain bring its sum
+// of squares to the optimum (alphas more than 0.3 off the truth: 27 of 78 instead of
+// 32) but cost about 1 ms on a 1,000-point stroke, half the time budget.
+constexpr std::size_t kFitPoints = 250;
+constexpr int kFitIterations = 8;
+// Stage 7 selects its segments for this much inside the tolerance: its model (~1e-6 of
+// a segment's length) and the move onto a corner (below) shift the exact chain a little.
+constexpr double kSelectionMargin = 0.01;
+// Stage 7's chain is moved onto its corner by a similarity where that moves no point by
+// more than this fraction of the tolerance, else by stage 6's joint rotation, which
+// fails on nearly straight segments (see snapToJoints).
+constexpr double kSnapReach = 0.1;
+// A part's stage 7 fit from the spline's chain that ends further than this many
+// tolerances from its points has set off astray: it is tried again from a finer start.
+constexpr double kAstrayFit = 2.0;
+// A part's curve is measured for straying (fitStroke's alternative starts) where it is
+// longer than the part's polyline by this factor.
+constexpr double kStrayLength = 1.02;
+
+// The piece reports of a chain stage 7 made (its segments need not be the segmentation's
+// pieces any more): each segment's span of spline parameters (those of the points whose
+// feet are on it), the kind of its ends (an inflection where the curvature is 0, an
+// extremum where |kappa| turns, else a cut by turning), its kind, alpha, and the LCG of
+// the smoothed stroke over it.
+std::vector<PieceReport> reportsOf(const std::vector<LaSegment>& segments, const std::vector<ChainFoot>& feet,
+                                   const std::vector<double>& parameters, const CubicBSpline& spline, bool closed) {
+  const std::size_t n = segments.size();
+  const double period = spline.tMax() - spline.tMin();
+  std::vector<PieceReport> out(n);
+  std::vector<bool> seen(n, false);
+  for (std::size_t k = 0; k < feet.size() && k < parameters.size(); ++k) {
+    PieceReport& r = out[feet[k].segment];
+    double t = parameters[k];
+    if (!seen[feet[k].segment]) {
+      r.t0 = r.t1 = t;
+      seen[feet[k].segment] = true;
+      continue;
+    }
+    if (closed && t < r.t1) t += period;  // through the seam
+    r.t1 = t;
+  }
+  auto trend = [](const LaSegment& s) { return std::abs(s.kappaEnd()) > std::abs(s.kappaStart()); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const LaSegment& seg = segments[i];
+    PieceReport& r = out[i];
+    if (!seen[i]) r.t0 = r.t1 = i > 0 ? out[i - 1].t1 : spline.tMin();
+    auto kindAt = [&](std::size_t joint) {
+      if (!closed && (joint == 0 || joint == n)) return SplitKind::kEnd;
+      const LaSegment& before = segments[(joint + n - 1) % n];
+      const LaSegment& after = segments[joint % n];
+      if (after.kappaStart() == 0.0) return SplitKind::kInflection;
+      return trend(before) != trend(after) ? SplitKind::kExtremum : SplitKind::kTurning;
+    };
+    r.start_kind = kindAt(i);
+    r.end_kind = kindAt(i + 1);
+    r.kind = seg.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+             : seg.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                     : PieceKind::kThreePoint;
+    r.alpha = seg.alpha();
+    if (r.t1 > r.t0) {
+      const LcgFit lcg = lcgOfPiece(spline, r.t0, r.t1);
+      r.lcg_alpha = lcg.alpha;
+      r.lcg_r2 = lcg.r2;
+    } else {
+      r.lcg_alpha = r.lcg_r2 = NAN;
+    }
+  }
+  return out;
+}
+
+// Stage 7's selection options, for `parts` parts' points: the tolerance less its margin,
+// the alpha range, the points and iterations per fit, the noise (for the bins and the
+// priors); closure, fixed ends and corners are the caller's.
+SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 1) {
+  const FitOptions& options = context.options;
+  SelectionOptions so;
+  so.tolerance = (1.0 - kSelectionMargin) * context.tolerance;
+  ChainFitOptions& co = so.fit;
+  co.min_alpha = options.min_alpha;
+  co.max_alpha = options.max_alpha;
+  co.max_points = kFitPoints * parts;
+  co.max_iterations = kFitIterations;
+  co.noise = context.noise.sigma;
+  return so;
+}
+
+}  // namespace
+
+// Stage 7 on one part: fits its chain to the points and selects its segments
+// (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
+// the spline. The result replaces the part's chain where it is within the tolerance,
+// closer to the points than that chain, or that chain has gaps; fit.max_dev is then
+// known.
+void polishPart(PartFit& fit, const Part& part, const FitContext& context) {
+  if (!fit.spline) return;  // a straight part
+  const FitOptions& options = context.options;
+  const double tol = context.tolerance, diag = context.diagonal;
+  SelectionOptions so = stage7Selection(context);
+  ChainFitOptions& co = so.fit;
+  co.closed = part.closed;
+  co.fix_start = part.starts_at_corner;
+  co.fix_end = part.ends_at_corner;
+  std::vector<LaSegment> start = fit.segments;
+  const bool straight = std::any_of(start.begin(), start.end(), [](const LaSegment& s) { return s.isStraight(); });
+  std::vector<ChainFoot> feet = fit.feet;
+  const bool from_spline = !fit.g2.usable() || straight || start.size() != fit.spans.size();
+  // (with `halve`, the spline's spans where a shot segment sets off astray are halved)
+  auto startFromSpline = [&](bool halve) {
+    std::vector<PieceReport> spans = fit.spans;
+    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve);
+    feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
+  };
+  if (from_spline) startFromSpline(false);
+  if (start.empty()) return;
+  SelectionResult selected = selectChain(start, part.points, feet, so);
+  if (from_spline && selected.fit.max_distance > kAstrayFit * tol) {
+    // Far outside the tolerance from the spline's chain: again from its spans halved
+    // where it set off astray, the closer kept. (Within twice the tolerance, the fit
+    // across corners usually closes the gap, and the halved start only adds segments.)
+    const std::size_t count = start.size();
+    startFromSpline(true);
+    if (!start.empty() && start.size() != count) {
+      SelectionResult again = selectChain(start, part.points, feet, so);
+      if (again.fit.report.status != SolveStatus::kBadInput && again.fit.max_distance < selected.fit.max_distance)
+        selected = std::move(again);
+    }
+  }
+  const ChainFitResult& polished = selected.fit;
+  if (polished.report.status == SolveStatus::kBadInput) return;
+  std::vector<LaSegment> segments = polished.segments;
+  if (co.closed || co.fix_end) {
+    const G2Options g2 = context.g2();
+    segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
+    if (segments.empty()) return;
+  }
+  if (polished.max_distance > tol && fit.g2.usable()) {
+    // Outside the tolerance: kept if closer to the points than the G2 chain it started
+    // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
+    // (a kink where the user drew none is worse than a miss, which the figures report).
+    fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
+    if (polished.max_distance >= fit.max_dev) return;
+  }
+  fit.max_dev = polished.max_distance;
+  fit.warnings.clear();
+  fit.segments = segments;
+  fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
+  fit.reports = reportsOf(fit.segments, polished.feet, fit.parameters, *fit.spline, part.closed);
+  for (std::size_t i = 0; i < fit.reports.size() && i < polished.alpha_standard_error.size(); ++i)
+    fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
+}
+
+// How far a part's chain goes from the part's polyline (strayFromPoints), measured only
+// where the chain is longer than the polyline (kStrayLength; else 0): a loop adds
+// length, noise only to the polyline, and the measure costs a grid of the points. With
+// `tip_allowance` (world units), measured always, and counted where above it: a sharp
+// corner running past the rounded tip of a drawn corner adds almost no length.
+double strayOf(const std::vector<LaSegment>& segments, const Part& part, double diag, double tip_allowance) {
+  double curve_length = 0.0, stroke_length = 0.0;
+  for (const LaSegment& s : segments) curve_length += s.length();
+  for (std::size_t i = 1; i < part.points.size(); ++i) stroke_length += (part.points[i] - part.points[i - 1]).norm();
+  if (part.closed) stroke_length += (part.points.front() - part.points.back()).norm();
+  const bool longer = curve_length > kStrayLength * stroke_length;
+  if (!longer && tip_allowance == INFINITY) return 0.0;
+  Curve c;
+  c.closed = part.closed;
+  for (const LaSegment& s : segments) c.pieces.push_back({s, false});
+  const double stray = strayFromPoints(c, part.points, diag);
+  return longer || stray > tip_allowance ? stray : 0.0;
+}
+
+// Makes the parts' chains meet at their corners. Stage 7 pins a part's ends to its
+// corner points, but a part whose chain comes from stages 2-6 (stage 7 off, or its
+// result not kept) ends where its smoothing spline does, up to about a tolerance from
+// the corner: the curve would be broken there. Each such pair of ends moves to their
+// midpoint, each part's chain by the similarity that takes its two ends to their places
+// (movedOntoEnds). Where that fails the gap stays, and g0_gap shows it. (After the fit
+// across corners the parts meet already, but for a closed chain's seam, to rounding.)
+void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, const G2Options& g2) {
+  const std::size_t n = fits.size();
+  if (n == 0) return;
+  std::vector<Vec2> starts(n), ends(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (fits[k].segments.empty()) return;
+    starts[k] = fits[k].segments.front().start();
+    ends[k] = fits[k].segments.back().end();
+  }
+  std::vector<Vec2> to_start = starts, to_end = ends;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!parts[k].ends_at_corner) continue;
+    const std::size_t next = (k + 1) % n;
+    to_end[k] = to_start[next] = 0.5 * (ends[k] + starts[next]);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 from = ends[k] - starts[k], to = to_end[k] - to_start[k];
+    if (to_start[k] == starts[k] && to_end[k] == ends[k]) continue;
+    if (!(from.norm() > 0.0 && to.norm() > 0.0)) {
+      // A part from a closed stroke's only corner back to it: no similarity closes it, a
+      // joint deformation (as stage 6) takes its end to its start.
+      std::vector<LaSegment> closed_up = snapToJoints(fits[k].segments, false, starts[k], g2);
+      if (closed_up.empty()) continue;
+      fits[k].segments = std::move(closed_up);
+    } else {
+      fits[k].segments = movedOntoEnds(fits[k].segments, to_start[k], to_end[k]);
+    }
+    fits[k].max_dev = fits[k].stray = NAN;  // (of the chain before the move)
+  }
+}
+
+// Stage 7 across corners. Each part's chain was fitted with its ends pinned to the
+// corner samples, but a corner falls between samples, and a drawn one is rounded: the
+// sample is seldom where the two sides' curves meet, and the sides bend to reach it.
+// This fits all the parts' chains as one chain whose corners are free (fitChain's
+// corners: position continuous, tangent and curvature free), so the fit places each
+// corner where the sides meet; where that misses the tolerance, also with each corner's
+// point held at the corner (the tip of a rounded corner), starting from the first try's
+// chain, the better kept. Where the curve misses, the segments are chosen again too
+// (selectChain; else only hooks beside corners are collapsed). A straight part stays a
+// line unless the selection bends it. Kept where it brings the curve closer to the
+// points, counting the stray, or keeps it within the tolerance. True if it changed the
+// chains; false where a part has no G2 chain.
+bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed,
+                      const FitContext& context) {
+  const std::size_t n = parts.size();
+  if (n == 0 || !(parts.front().starts_at_corner || parts.front().ends_at_corner)) return false;
+  const double tol = context.tolerance, diag = context.diagonal;
+  std::vector<LaSegment> chain;
+  std::vector<Vec2> points;
+  SelectionOptions so = stage7Selection(context, n);
+  ChainFitOptions& co = so.fit;
+  co.closed = closed;
+  std::vector<std::size_t> first_point;
+  for (std::size_t k = 0; k < n; ++k) {
+    const PartFit& fit = fits[k];
+    if (!fit.g2.usable() || fit.segments.empty()) return false;
+    first_point.push_back(points.empty() ? 0 : points.size() - 1);  // (the corner is both parts')
+    if (parts[k].starts_at_corner) co.corners.push_back({chain.size(), first_point.back()});
+    if (fit.spline) chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
+    else chain.push_back(fit.segments.front());  // a line
+    points.insert(points.end(), parts[k].points.begin() + (points.empty() ? 0 : 1), parts[k].points.end());
+  }
+  if (closed) points.pop_back();  // the first corner again
+  // The larger of the deviation and the stray. At a corner's tip, a stray counts beyond
+  // the warning's bound and a sample step: the polyline between two samples cuts a sharp
+  // corner by up to about a step.
+  const double tip_allowance = kStrayWarning * tol + medianStep(points);
+  double before = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    PartFit& fit = fits[k];
+    if (std::isnan(fit.max_dev)) fit.max_dev = maxDeviationOf(fit.segments, parts[k].points, diag);
+    fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
+    before = std::max({before, fit.max_dev, fit.stray});
+  }
+
+  // The parts' chains from one joint fit, with their largest deviation or stray.
+  auto split = [&](const SelectionResult& selected, std::vector<PartFit>& out) -> double {
+    const ChainFitResult& joint = selected.fit;
+    std::vector<std::size_t> first_segment = {0};  // (the edits may have added or removed some)
+    for (const ChainCorner& c : selected.corners)
+      if (c.joint > 0) first_segment.push_back(c.joint);
+    first_segment.push_back(joint.segments.size());
+    if (!joint.improved || first_segment.size() != n + 1) return INFINITY;
+    out = fits;
+    double worst = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      PartFit& fit = out[k];
+      const std::size_t s0 = first_segment[k], count = first_segment[k + 1] - s0;
+      fit.segments.assign(joint.segments.begin() + static_cast<std::ptrdiff_t>(s0),
+                          joint.segments.begin() + static_cast<std::ptrdiff_t>(s0 + count));
+      // The part's points: their feet on its own segments (past its corner: its end
+      // there) and their distances.
+      std::vector<ChainFoot> feet;
+      fit.max_dev = 0.0;
+      for (std::size_t i = 0; i < parts[k].points.size(); ++i) {
+        const std::size_t at = (first_point[k] + i) % points.size();
+        const ChainFoot& f = joint.feet[at];
+        feet.push_back(f.segment < s0           ? ChainFoot{0, 0.0}
+                       : f.segment >= s0 + count ? ChainFoot{count - 1, 1.0}
+                                                 : ChainFoot{f.segment - s0, f.u});
+        fit.max_dev = std::max(fit.max_dev, joint.distance[at]);
+      }
+      fit.stray = strayOf(fit.segments, parts[k], diag, tip_allowance);
+      worst = std::max({worst, fit.max_dev, fit.stray});
+      fit.warnings.clear();  // (of the stages whose chain this replaces)
+      fit.g2 = {SolveStatus::kConverged, joint.report.iterations, 0.0, "G2 by construction (stage 7, across corners)"};
+      if (fit.spline) {
+        fit.reports = reportsOf(fit.segments, feet, fit.parameters, *fit.spline, false);
+      } else {  // a straight part: still a line, or bent (and split) by the selection, no spline
+        fit.reports.assign(count, fits[k].reports.front());
+        for (std::size_t i = 0; i < count; ++i) fit.reports[i].alpha = fit.segments[i].alpha();
+      }
+      for (std::size_t i = 0; i < count && s0 + i < joint.alpha_standard_error.size(); ++i)
+        fit.reports[i].alpha_standard_error = joint.alpha_standard_error[s0 + i];
+    }
+    return worst;
+  };
+  // (the segments are chosen again only where the curve misses: else they stay, but for
+  // hooks beside corners)
+  so.refine = before > tol;
+  std::vector<PartFit> out, held;
+  const SelectionResult free = selectChain(chain, points, {}, so);
+  double after = split(free, out);
+  if (after > tol) {
+    // (from the free fit where it improved: its hooks are gone and its corners near)
+    co.hold_corner_points = true;
+    SelectionResult held_fit;
+    if (free.fit.improved) {
+      co.corners = free.corners;
+      held_fit = selectChain(free.fit.segments, points, free.fit.feet, so);
+    } else {
+      held_fit = selectChain(chain, points, {}, so);
+    }
+    const double after_held = split(held_fit, held);
+    if (after_held < after) after = after_held, out = std::move(held);
+  }
+  // (within the tolerance, the least-squares corners are the better estimate)
+  if (!(after < before) && !(after <= tol)) return false;
+  fits = std::move(out);
+  return true;
+}
+
+
+}  // namespace la

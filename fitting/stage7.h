@@ -1,0 +1,42 @@
+#pragma once
+// Stage 7 (ours): each part's G2 chain fitted to its points by least squares, its
+// segments chosen by the model selection (fitting/model_selection.h), then all parts
+// fitted again as one chain whose corners are free. Also how the parts' chains are
+// measured (deviation, stray) and joined at their corners.
+
+#include <cmath>
+#include <vector>
+
+#include "fitting/fit_context.h"
+#include "fitting/parts.h"
+
+namespace la {
+
+/// A curve further than this many tolerances from the stroke's polyline (a loop between
+/// two points) is reported as straying: between sparse points a fair curve may leave the
+/// chords by about a tolerance.
+inline constexpr double kStrayWarning = 2.0;
+
+/// Stage 7 on one part, from stage 6's chain or, where that has no G2 chain, from the
+/// spline (fitting/spline_chain.h). The result replaces the part's chain where it is
+/// within the tolerance, closer to the points than that chain, or that chain has gaps;
+/// fit.max_dev is then known.
+void polishPart(PartFit& fit, const Part& part, const FitContext& context);
+
+/// Stage 7 across corners: all parts' chains fitted as one chain whose corners are
+/// free. True if it changed the chains; false where a part has no G2 chain or the fit
+/// brought nothing.
+bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed,
+                      const FitContext& context);
+
+/// Makes the parts' chains meet at their corners (each pair of ends moved to their
+/// midpoint, each chain by a similarity).
+void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, const G2Options& g2);
+
+/// How far a part's chain goes from the part's polyline, measured where the chain is
+/// longer than the polyline (else 0); with `tip_allowance` (world units) always, and
+/// counted where above it.
+double strayOf(const std::vector<LaSegment>& segments, const Part& part, double diag,
+               double tip_allowance = INFINITY);
+
+}  // namespace la

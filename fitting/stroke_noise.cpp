@@ -1,0 +1,98 @@
+#include "fitting/stroke_noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace la {
+namespace {
+
+// Points on a grid (pixels) are off the true stroke by up to sqrt(2)/2 of a step; no
+// curve can be closer to all of them than about this, so the tolerance is not set below
+// this many steps.
+constexpr double kQuantizationFloor = 0.75;
+// A pointer that moves at most this many grid steps per sample stays on a pixel row or
+// column for several samples (stairs), so its noise repeats over neighbouring samples;
+// see noiseOf.
+constexpr double kStairSteps = 2.0;
+
+// The noise floor of the tolerance is this many standard deviations of the points'
+// estimated noise: a 2D Gaussian exceeds 4 sigma with probability e^-8 ~ 3e-4.
+constexpr double kNoiseSigmas = 4.0;
+
+// The smallest tolerance the points allow: their noise level and, for points on an
+// integer grid (pixels), the quantization. The noise is estimated robustly from the
+// fourth differences p[i-2] - 4p[i-1] + 6p[i] - 4p[i+1] + p[i+2] across the stroke
+// (along the normal of the chord p[i-2]p[i+2], so uneven spacing along the stroke does
+// not count): they cancel any cubic, i.e. the curve's own bending, and for independent
+// noise sigma have standard deviation sigma sqrt(70); the median ignores corners. With
+// `lag`, the differences of every lag-th point: noise that repeats over up to `lag`
+// neighbouring samples cancels partly in the differences of neighbours, not in these.
+double noiseSigma(const std::vector<Vec2>& p, std::size_t lag = 1) {
+  if (p.size() < 4 * lag + 3) return 0.0;
+  std::vector<double> d;
+  for (std::size_t i = 2 * lag; i + 2 * lag < p.size(); ++i) {
+    const Vec2 chord = p[i + 2 * lag] - p[i - 2 * lag];
+    const double len = chord.norm();
+    if (!(len > 0.0)) continue;
+    const Vec2 normal(-chord.y() / len, chord.x() / len);
+    d.push_back(std::abs(normal.dot(p[i - 2 * lag] - 4.0 * p[i - lag] + 6.0 * p[i] - 4.0 * p[i + lag] + p[i + 2 * lag])));
+  }
+  if (d.empty()) return 0.0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2] / 0.6745 / std::sqrt(70.0);  // median of |N(0,s)| = 0.6745 s
+}
+
+// The step of the grid the points lie on along one coordinate (every value an integer
+// number of steps from the smallest: pixels, possibly shifted and scaled, as Omniglot's
+// canvas units are), or 0 if they do not. The step is the smallest change between
+// consecutive points.
+double gridStep(const std::vector<Vec2>& p, int axis) {
+  constexpr double kRounding = 1e-3;  // in steps (the files print 6 decimals)
+  double step = INFINITY, lo = p.front()[axis], hi = lo;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const double d = std::abs(p[i][axis] - p[i - 1][axis]);
+    if (d > 0.0) step = std::min(step, d);
+    lo = std::min(lo, p[i][axis]), hi = std::max(hi, p[i][axis]);
+  }
+  if (!std::isfinite(step)) return 0.0;
+  step = (hi - lo) / std::round((hi - lo) / step);  // the printed step's rounding spread over the range
+  for (const Vec2& q : p) {
+    const double k = (q[axis] - lo) / step;
+    if (std::abs(k - std::round(k)) > kRounding) return 0.0;
+  }
+  return step;
+}
+
+}  // namespace
+
+// The points' noise: sigma per coordinate (the estimate above, plus the quantization of
+// a grid of step h: uniform on a step, variance h^2/12 per coordinate) and the floor of
+// the tolerance it implies. On a grid walked a pixel or two per sample (a mouse), the
+// pointer's tremor and rounding repeat over neighbouring samples (stairs): the noise is
+// taken at lag 2 as well, the larger estimate kept. Larger lags, and sparser samples,
+// would span the curve's own bends (its share grows as lag^4): at lag 3 small glyphs'
+// tolerances rose up to 4x, and lag 2 on strokes sampled every 3-8 pixels 1.6-3x.
+Noise noiseOf(const std::vector<Vec2>& p) {
+  const double hx = gridStep(p, 0), hy = gridStep(p, 1);
+  const bool on_grid = hx > 0.0 && hy > 0.0;
+  const double h = std::max(hx, hy);
+  const bool stairs = on_grid && medianStep(p) <= kStairSteps * h;
+  const double sigma = stairs ? std::max(noiseSigma(p), noiseSigma(p, 2)) : noiseSigma(p);
+  Noise n;
+  n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
+  n.floor = std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor * h : 0.0);
+  n.on_grid = on_grid;
+  return n;
+}
+
+std::vector<Vec2> withoutStairs(const std::vector<Vec2>& p, bool closed) {
+  const auto m = static_cast<long>(p.size());
+  if (m < 5) return p;
+  auto at = [&](long k) { return p[static_cast<std::size_t>(closed ? (k % m + m) % m : std::clamp(k, 0L, m - 1))]; };
+  std::vector<Vec2> out = p;
+  for (long i = closed ? 0 : 1; i < (closed ? m : m - 1); ++i)
+    out[static_cast<std::size_t>(i)] = (at(i - 2) + 4.0 * at(i - 1) + 6.0 * at(i) + 4.0 * at(i + 1) + at(i + 2)) / 16.0;
+  return out;
+}
+
+}  // namespace la

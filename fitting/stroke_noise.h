@@ -1,0 +1,24 @@
+#pragma once
+// The noise of a stroke's points, which sets the smallest tolerance a fit can keep:
+// their jitter, estimated from fourth differences (which cancel the curve's own
+// bending), and for points on a pixel grid the quantization (stroke_noise.cpp says how).
+
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace la {
+
+struct Noise {
+  double sigma = 0.0;    // per coordinate, world units
+  double floor = 0.0;    // the smallest tolerance the points allow
+  bool on_grid = false;  // the points lie on a pixel grid
+};
+
+Noise noiseOf(const std::vector<Vec2>& points);
+
+/// The points with a binomial filter (1 4 6 4 1)/16 over five neighbours; an open
+/// part's ends stay. On a pixel grid it turns a one-pixel stair into a slope.
+std::vector<Vec2> withoutStairs(const std::vector<Vec2>& points, bool closed);
+
+}  // namespace la
