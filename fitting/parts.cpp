@@ -14,7 +14,6 @@ constexpr double kGapSteps = 10.0;
 // tolerance; the reported figures use 1e-6).
 constexpr double kDeviationResolution = 1e-5;
 
-
 // Points along every step of `p` (and the closing step of a closed part) longer than
 // kGapSteps times `spacing`, that far apart. A long step is a straight edge the data
 // do not sample (a font outline's closing stem, a polygon's side) or samples the
@@ -71,6 +70,35 @@ bool withinChord(const std::vector<Vec2>& pts, double tol) {
     if (along < -tol || along > len + tol || std::abs(cross(d, p - a)) / len > tol) return false;
   }
   return true;
+}
+
+std::vector<std::size_t> turnsAlongLine(const std::vector<Vec2>& points, double tolerance) {
+  // Positions along the line through the two points furthest apart along x or y.
+  auto by = [](int axis) { return [axis](const Vec2& a, const Vec2& b) { return a[axis] < b[axis]; }; };
+  const auto [lo_x, hi_x] = std::minmax_element(points.begin(), points.end(), by(0));
+  const auto [lo_y, hi_y] = std::minmax_element(points.begin(), points.end(), by(1));
+  const Vec2 span = (*hi_x - *lo_x).norm() >= (*hi_y - *lo_y).norm() ? Vec2(*hi_x - *lo_x) : Vec2(*hi_y - *lo_y);
+  const Vec2 direction = span.normalized();
+  auto along = [&](std::size_t i) { return direction.dot(points[i] - points.front()); };
+  // The furthest point of each run in one direction, once the stroke has come back from
+  // it by more than the tolerance.
+  std::vector<std::size_t> turns = {0};
+  std::size_t extreme = 0;
+  double heading = 0.0;  // +1 or -1 along `direction` once known
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const double step = along(i) - along(extreme);
+    if (heading == 0.0) {
+      if (std::abs(step) > tolerance) heading = step > 0.0 ? 1.0 : -1.0, extreme = i;
+    } else if (step * heading > 0.0) {
+      extreme = i;
+    } else if (-step * heading > tolerance) {
+      turns.push_back(extreme);
+      heading = -heading;
+      extreme = i;
+    }
+  }
+  if (turns.back() != points.size() - 1) turns.push_back(points.size() - 1);
+  return turns;
 }
 
 double maxDeviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {

@@ -46,6 +46,11 @@ std::vector<Part> splitAtCorners(const CleanStroke& stroke);
 /// beyond its ends by more): a straight part.
 bool withinChord(const std::vector<Vec2>& points, double tol);
 
+/// Where a straight stroke (CleanStroke::straight) turns back along its line: indices of
+/// its first point, of each point from which it runs back by more than `tolerance`, and
+/// of its last point. Its curve is the lines between them (corners of pi).
+std::vector<std::size_t> turnsAlongLine(const std::vector<Vec2>& points, double tolerance);
+
 /// The largest distance from the points to a part's chain.
 double maxDeviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag);
 

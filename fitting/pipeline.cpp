@@ -10,6 +10,29 @@
 #include "fitting/stroke_noise.h"
 
 namespace la {
+namespace {
+
+// A straight stroke: its lines, a corner of pi where it turns back.
+void fitStraight(FitResult& r) {
+  const std::vector<Vec2>& p = r.cleaned.points;
+  const std::vector<std::size_t> turns = turnsAlongLine(p, r.tolerance);
+  for (std::size_t k = 0; k + 1 < turns.size(); ++k) {
+    const Vec2 a = p[turns[k]], b = p[turns[k + 1]];
+    r.curve.pieces.push_back({LaSegment::arc((b - a).norm(), a, angleOf(b - a), 0.0), k > 0});
+    PieceReport rep;
+    rep.alpha = rep.lcg_alpha = INFINITY;
+    rep.lcg_r2 = NAN;
+    rep.part = static_cast<int>(k);
+    r.pieces.push_back(rep);
+    r.splits.emplace_back();
+    if (k > 0) r.cleaned.corners.push_back(turns[k]);
+  }
+  const auto tq = Clock::now();
+  r.quality = measureQuality(r.curve, r.cleaned.points);
+  r.timings.quality_ms = msSince(tq);
+}
+
+}  // namespace
 
 FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const auto start = Clock::now();
@@ -28,6 +51,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
+
+  if (r.cleaned.straight) {
+    fitStraight(r);
+    r.timings.total_ms = msSince(start);
+    return r;
+  }
 
   std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;

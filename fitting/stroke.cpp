@@ -651,7 +651,9 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   }
   if (collinear(pts.p)) {
     publish();
-    fail("all points lie on one straight line", samples, result);
+    result.diagonal = boundingBoxDiagonal(pts.p);
+    result.straight = true;
+    return result;
   }
   // From here on no step removes points if that would leave them collinear: a stroke
   // that can be fitted stays so.
@@ -709,7 +711,11 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   // 5. Input errors (the seam of a closed stroke could leave too little).
   publish();
   result.diagonal = boundingBoxDiagonal(pts.p);
-  if (pts.size() < measured && collinear(pts.p)) fail("all points lie on one straight line", samples, result);
+  if (pts.size() < measured && collinear(pts.p)) {  // (a closed stroke's seam cut can leave a line)
+    result.straight = true;
+    result.closed = false;
+    return result;
+  }
   if (result.closed && pts.size() < kMinClosedPoints) fail("a closed curve needs at least 4 points", samples, result);
 
   // 6. Corners; a closed stroke starts at its corner nearest the original start.

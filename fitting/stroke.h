@@ -26,8 +26,9 @@
 //     an arc-length window, so 1-px quantization does not trigger it, and a smooth end
 //     curl is not a hook. 70% of the length (not counting an outlier jump) and 3 points
 //     always remain. If a hook was cut, step 3 is tried again;
-//  5. throws StrokeError if fewer than 3 distinct points remain or they are collinear.
-//     (No trimming step removes points if that would leave the rest collinear.);
+//  5. throws StrokeError if fewer than 3 distinct points remain; points all on one line
+//     are a straight stroke, returned after step 1 (no trimming step removes points if
+//     that would leave the rest collinear);
 //  6. corners (detect_corners): see the options.
 //
 // Closed strokes: `points` do not repeat the first point at the end (the closing step
@@ -114,6 +115,10 @@ struct CleanStroke {
   /// stroke: if there is any corner, corners.front() == 0 (the points are rotated so).
   std::vector<std::size_t> corners;
   bool closed = false;
+  /// All points lie on one straight line (within 1e-9 of the diagonal): the curve is
+  /// that line, or lines where the stroke turns back along it; no other clean-up step
+  /// ran (no closure, hooks or corners).
+  bool straight = false;
   std::size_t trimmed_start = 0;     // raw samples removed as a pen-down hook / outlier
   std::size_t trimmed_end = 0;       // raw samples removed as a pen-up hook
   std::size_t removed_overlap = 0;   // raw samples cut where a closed stroke overlaps its start
@@ -125,8 +130,8 @@ struct CleanStroke {
   //           + removed_duplicates.
 };
 
-/// Throws StrokeError if fewer than 3 distinct finite points remain or all of them lie
-/// on one straight line (nothing to fair); the message gives the counts.
+/// Throws StrokeError if fewer than 3 distinct finite points remain (nothing to fair);
+/// the message gives the counts. Points all on one line come back `straight`.
 CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options = {});
 
 }  // namespace la

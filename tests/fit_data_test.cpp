@@ -5,9 +5,10 @@
 // read with la::readStrokes.
 //
 // Per stroke:
-//  - a stroke with fewer than 3 distinct points or all points on one line (decided here,
-//    independently of the clean-up code) must throw StrokeError, and only those; any
-//    other exception, or StrokeError on a fittable stroke, fails;
+//  - a stroke with fewer than 3 distinct points (decided here, independently of the
+//    clean-up code) must throw StrokeError, and only those; any other exception, or
+//    StrokeError on a fittable stroke, fails; a stroke whose points all lie on one line
+//    (decided here too) comes out as straight lines only;
 //  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
 //    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
 //    relative);
@@ -95,8 +96,10 @@ std::vector<fs::path> filesOf(const fs::path& folder, const std::string& extensi
   return out;
 }
 
-// Independent test of the input errors fitStroke must throw StrokeError for.
-bool degenerate(const Stroke& stroke, std::string& why) {
+// Independent test of the input errors fitStroke must throw StrokeError for (true), and
+// of strokes whose points all lie on one line (`collinear`).
+bool degenerate(const Stroke& stroke, std::string& why, bool& collinear) {
+  collinear = false;
   std::vector<Vec2> finite;
   for (const StrokeSample& s : stroke.samples)
     if (std::isfinite(s.p.x()) && std::isfinite(s.p.y())) finite.push_back(s.p);
@@ -122,10 +125,7 @@ bool degenerate(const Stroke& stroke, std::string& why) {
   const Vec2 d = (b - a).normalized();
   double off = 0.0;
   for (const Vec2& p : distinct) off = std::max(off, std::abs(d.x() * (p - a).y() - d.y() * (p - a).x()));
-  if (off <= kCollinearFraction * diag) {
-    why = "collinear (largest distance from the line " + std::to_string(off) + ")";
-    return true;
-  }
+  collinear = off <= kCollinearFraction * diag;
   return false;
 }
 
@@ -171,7 +171,7 @@ void fitDataSet(const DataSet& set) {
 
   FitOptions options;  // the defaults (default tolerance: 0.5% of the diagonal)
   options.cleanup.assume_closed = set.assume_closed;
-  int strokes = 0, fitted = 0, rejected = 0, raised = 0, failed = 0;
+  int strokes = 0, fitted = 0, straight = 0, rejected = 0, raised = 0, failed = 0;
   long segments = 0, extrema = 0;  // totals over the fitted strokes (fairness: few of both)
   double worst_ratio = 0.0;
   std::string worst_where;
@@ -191,7 +191,8 @@ void fitDataSet(const DataSet& set) {
       const std::string name = rel + " stroke " + std::to_string(k);
       const std::string where = name + " (" + std::to_string(all[k].samples.size()) + " points)";
       std::string why;
-      const bool bad_input = degenerate(all[k], why);
+      bool collinear = false;
+      const bool bad_input = degenerate(all[k], why, collinear);
       FitResult r;
       try {
         r = fitStroke(all[k], options);
@@ -216,6 +217,11 @@ void fitDataSet(const DataSet& set) {
         continue;
       }
       ++fitted;
+      if (collinear) {
+        ++straight;
+        for (const CurvePiece& p : r.curve.pieces)
+          if (!p.segment.isStraight()) ADD_FAILURE() << where << ": collinear points fitted with a curved segment";
+      }
       segments += r.quality.segments;
       extrema += r.quality.extrema;
       if (warns(r, "tolerance raised")) ++raised;
@@ -263,10 +269,10 @@ void fitDataSet(const DataSet& set) {
       }
     }
   }
-  std::printf("[ data set ] %s: %zu files, %d strokes: %d fitted, %d rejected as degenerate (StrokeError), "
+  std::printf("[ data set ] %s: %zu files, %d strokes: %d fitted (%d straight), %d rejected as degenerate (StrokeError), "
               "%d with failures; tolerance raised to the noise floor in %d; %ld segments and %ld curvature extrema "
               "in total; worst max_dev/tolerance %.4f (%s)\n",
-              set.name, files.size(), strokes, fitted, rejected, failed, raised, segments, extrema, worst_ratio,
+              set.name, files.size(), strokes, fitted, straight, rejected, failed, raised, segments, extrema, worst_ratio,
               worst_where.c_str());
 }
 

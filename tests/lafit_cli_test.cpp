@@ -604,8 +604,15 @@ TEST_F(LafitCli, FewerThanThreeDistinctPointsIsReportedByFile) {
   expectInputError("few.csv", "0,0\n0,0\n1,1\n1,1\n", {"few.csv", "fewer than 3 distinct"});
 }
 
-TEST_F(LafitCli, CollinearPointsAreReportedByFile) {
-  expectInputError("line.csv", "0,0\n1,1\n2,2\n3,3\n4,4\n", {"line.csv", "straight line"});
+TEST_F(LafitCli, CollinearPointsAreOneLine) {
+  write("line.csv", "0,0\n1,1\n2,2\n3,3\n4,4\n");
+  const Outcome r = lafit({"fit", "line.csv", "-o", "curve.json"});
+  ASSERT_EQ(r.status, 0) << r;
+  const json segments = readJson("curve.json").at("segments");
+  ASSERT_EQ(segments.size(), 1u);
+  EXPECT_EQ(segments[0].at("alpha"), "inf");
+  EXPECT_DOUBLE_EQ(segments[0].at("length").get<double>(), 4.0 * std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(segments[0].at("kappa_start").get<double>(), 0.0);
 }
 
 TEST_F(LafitCli, FitReadsLoneCarriageReturnLineEnds) {
@@ -659,7 +666,7 @@ TEST_F(LafitCli, UnreadableInputLeavesExistingOutputsUntouched) {
 TEST_F(LafitCli, StrokeThatCannotBeFittedLeavesAnExistingOutputUntouched) {
   // The whole file is one unfittable stroke: nothing to write, and a good curve from an
   // earlier run must not be replaced by an error entry.
-  write("line.csv", "0,0\n1,1\n2,2\n3,3\n");
+  write("line.csv", "0,0\n0,0\n1,1\n1,1\n");  // two distinct points
   write("out.json", "previous\n");
   const Outcome r = lafit({"fit", "line.csv", "-o", "out.json", "--svg", "out.svg"});
   EXPECT_EQ(r.status, kExitInputError) << r;

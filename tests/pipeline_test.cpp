@@ -1180,3 +1180,37 @@ TEST(SegmentAlpha, InflectionPieceAlphaIsFixed) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// A straight stroke is a line (alpha infinite), not an error; one drawn there and back
+// along the same line is two lines meeting at a corner at the far end.
+TEST(PipelineStraight, CollinearPointsAreOneLine) {
+  std::vector<Vec2> points;
+  for (int i = 0; i <= 40; ++i) points.push_back(Vec2(5.0, 2.0) + 1.5 * i * Vec2(0.8, -0.6));
+  const FitResult r = fit(points);
+  ASSERT_EQ(r.curve.pieces.size(), 1u);
+  const LaSegment& line = r.curve.pieces[0].segment;
+  EXPECT_TRUE(line.isStraight());
+  EXPECT_TRUE(std::isinf(line.alpha()));
+  EXPECT_NEAR(line.length(), 60.0, 1e-9);
+  EXPECT_NEAR(line.theta0(), std::atan2(-0.6, 0.8), 1e-12);
+  EXPECT_LT(r.quality.max_dev, 1e-9);
+}
+
+TEST(PipelineStraight, ThereAndBackIsTwoLinesWithACorner) {
+  std::vector<Vec2> points;
+  for (int i = 0; i <= 30; ++i) points.push_back(Vec2(i, 2.0 * i));
+  for (int i = 29; i >= 10; --i) points.push_back(Vec2(i, 2.0 * i));
+  const FitResult r = fit(points);
+  ASSERT_EQ(r.curve.pieces.size(), 2u);
+  EXPECT_TRUE(r.curve.pieces[1].corner);
+  EXPECT_NEAR((r.curve.pieces[0].segment.end() - Vec2(30, 60)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((r.curve.pieces[1].segment.end() - Vec2(10, 20)).norm(), 0.0, 1e-9);
+  EXPECT_EQ(r.quality.corners, 1);
+  EXPECT_LT(r.quality.max_dev, 1e-9);
+}
+
+}  // namespace
+}  // namespace la

@@ -26,7 +26,7 @@ outputs:
   --csv FILE.csv  samples x,y,s,theta,kappa (a blank line between curves)
   --dxf FILE.dxf  one SPLINE per curve
 
-A stroke that cannot be fitted (a dot, a straight line) gets {"error": "why"} in the
+A stroke that cannot be fitted (a dot, two points) gets {"error": "why"} in the
 JSON and the others are still fitted; if none can be, no output file is written (an
 existing one is left as it was). Every output is replaced atomically.
 
