@@ -171,6 +171,107 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   return worst;
 }
 
+namespace {
+
+// A curvature change smaller than this (times 1 / diagonal) is no change: lacheck.py's
+// extrema_dense threshold. (Its diagonal is the rebuilt curve's, ours the points'; the
+// two differ by about the tolerance, which moves the threshold by a fraction of that.)
+constexpr double kSmallestCurvatureChange = 1e-6;
+// lacheck.py rebuilds every segment at this many equal steps of arc length.
+constexpr int kCheckerSteps = 2000;
+// A segment whose curvature changes by less than this fraction of its larger end value
+// (or of 1 / diagonal, near zero) is an arc or a line: it has no trend. lacheck.py's
+// value; its floor is 1 where ours is 1 / diagonal (a floor of 1 depends on the units).
+constexpr double kFlatTrend = 1e-12;
+
+// +1 for curvature rising along the segment, -1 falling, 0 for an arc or a line.
+int trendOf(const LaSegment& s, double diagonal) {
+  const double a = s.kappaStart(), b = s.kappaEnd();
+  if (std::abs(b - a) < kFlatTrend * std::max({std::abs(a), std::abs(b), 1.0 / diagonal})) return 0;
+  return b > a ? 1 : -1;
+}
+
+// Walks the curvature in curve order as lacheck.py's extrema_dense does: a sample that
+// differs from the anchor (the last sample that changed) by more than `eps` changes in
+// that direction and becomes the anchor; a change against the one before is a reversal.
+class ReversalCounter {
+ public:
+  explicit ReversalCounter(double eps) : eps_(eps) {}
+
+  void add(double kappa) {
+    if (!started_) {
+      anchor_ = kappa, started_ = true;
+      return;
+    }
+    if (std::abs(kappa - anchor_) <= eps_) return;
+    const int direction = kappa > anchor_ ? 1 : -1;
+    anchor_ = kappa;
+    if (first_ == 0) first_ = direction;
+    else if (direction != last_) ++reversals_;
+    last_ = direction;
+  }
+
+  // The segment's curvature as lacheck.py's dense rebuild samples it, at kCheckerSteps + 1
+  // points. The curvature of an LA segment is monotone and so is the step between samples
+  // (|d kappa/ds| is a power of a linear function), so when both end steps exceed eps every
+  // sample changes, and the two ends alone give the same directions and leave the same
+  // anchor. Only a nearly flat segment is walked sample by sample.
+  void addSegment(const LaSegment& seg) {
+    const double step = seg.length() / kCheckerSteps;
+    const double k0 = seg.kappaStart(), k1 = seg.kappaEnd();
+    if (seg.isCircular() ||
+        (std::abs(seg.kappa(step) - k0) > eps_ && std::abs(k1 - seg.kappa(seg.length() - step)) > eps_)) {
+      add(k0);
+      add(k1);
+      return;
+    }
+    for (int i = 0; i < kCheckerSteps; ++i) add(seg.kappa(i * step));
+    add(k1);
+  }
+
+  // The caller adds a closed curve's first sample again at the end; the change back to
+  // the first direction counts too.
+  int reversals(bool closed) const { return reversals_ + (closed && first_ != 0 && last_ != first_ ? 1 : 0); }
+
+ private:
+  double eps_;
+  double anchor_ = 0.0;
+  bool started_ = false;
+  int first_ = 0, last_ = 0;  // directions of the first and the latest change
+  int reversals_ = 0;
+};
+
+// Reversals of the trend at the joints of each smooth part, arcs and lines skipped (so
+// a plateau between a rise and a fall counts once), as lacheck.py's extrema_per_part:
+// parts run from one corner to the next (an open curve's first part from its start); a
+// closed curve without corners is one part whose seam counts too.
+std::vector<int> extremaPerPart(const Curve& curve, const std::vector<int>& trend) {
+  const int n = static_cast<int>(curve.pieces.size());
+  if (n == 0) return {};
+  std::vector<int> starts;
+  for (int i = 0; i < n; ++i)
+    if (curve.pieces[i].corner) starts.push_back(i);
+  const bool seam = curve.closed && starts.empty();
+  if (starts.empty() || (!curve.closed && starts.front() != 0)) starts.insert(starts.begin(), 0);
+  std::vector<int> counts;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    const int end = k + 1 < starts.size() ? starts[k + 1] : (curve.closed ? starts[0] + n : n);
+    int first = 0, last = 0, reversals = 0;
+    for (int i = starts[k]; i < end; ++i) {
+      const int t = trend[i % n];
+      if (t == 0) continue;
+      if (first == 0) first = t;
+      else if (t != last) ++reversals;
+      last = t;
+    }
+    if (seam && first != 0 && last != first) ++reversals;
+    counts.push_back(reversals);
+  }
+  return counts;
+}
+
+}  // namespace
+
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points) {
   QualityFigures q;
   q.diagonal = boundingBoxDiagonal(points);
@@ -185,11 +286,8 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
   q.rms_dev = d.empty() ? 0.0 : std::sqrt(sum / d.size());
 
   const std::size_t n = curve.pieces.size();
-  auto trend = [](const LaSegment& s) {
-    const double a = s.kappaStart(), b = s.kappaEnd();
-    if (std::abs(b - a) <= 1e-12 * std::max({std::abs(a), std::abs(b), 1e-300})) return 0;
-    return b > a ? 1 : -1;
-  };
+  std::vector<int> trend;
+  for (const CurvePiece& piece : curve.pieces) trend.push_back(trendOf(piece.segment, diag));
   for (std::size_t j = 0; j < n; ++j) {
     if (curve.pieces[j].corner) ++q.corners;
     const bool has_joint_before = j > 0 || (curve.closed && n > 1);
@@ -200,9 +298,21 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
     if (curve.pieces[j].corner) continue;
     q.g1_gap = std::max(q.g1_gap, std::abs(turnBetween(a, b)));
     q.g2_gap = std::max(q.g2_gap, relativeGap(a.kappaEnd(), b.kappaStart(), diag));
-    const int ta = trend(a), tb = trend(b);
+    const int ta = trend[(j + n - 1) % n], tb = trend[j];
     if (ta != 0 && tb != 0 && ta != tb) ++q.extrema;
   }
+  q.extrema_per_part = extremaPerPart(curve, trend);
+  for (int count : q.extrema_per_part) q.max_extrema_per_part = std::max(q.max_extrema_per_part, count);
+
+  ReversalCounter reversals(kSmallestCurvatureChange / diag);
+  for (const CurvePiece& piece : curve.pieces) {
+    reversals.addSegment(piece.segment);
+    // monotone curvature: the largest |kappa| of a segment is at one of its ends
+    q.max_abs_kappa = std::max({q.max_abs_kappa, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
+  }
+  if (curve.closed && n > 0) reversals.add(curve.pieces[0].segment.kappaStart());
+  q.extrema_dense = reversals.reversals(curve.closed);
+  q.min_radius = q.max_abs_kappa > 0.0 ? 1.0 / q.max_abs_kappa : INFINITY;
   // inflections: sign changes of curvature, also across corners (the shape inflects there too)
   auto sign = [](double k) { return k > 0 ? 1 : (k < 0 ? -1 : 0); };
   int last = 0;

@@ -1,8 +1,11 @@
 #pragma once
 // The quality figures of DESIGN.md section 6, one definition everywhere (lafit, the GUI,
 // the tests): deviation of the input points from the curve, tangent and curvature gaps
-// at joints, and the number of curvature extrema and inflections.
+// at joints, the number of curvature extrema and inflections, and the tightest radius.
+// extrema_dense and extrema_per_part are counted as the independent checker
+// ../shared/tools/lacheck.py counts them, so that its figures and ours compare.
 
+#include <cmath>
 #include <vector>
 
 #include "core/curve.h"
@@ -18,6 +21,17 @@ struct QualityFigures {
   double g2_gap = 0.0;    // largest relative curvature jump at a (non-corner) joint
   int extrema = 0;        // curvature extrema along the curve (trend changes at joints)
   int inflections = 0;    // curvature sign changes
+  /// Reversals of the curvature along the whole curve in order, a jump at a corner
+  /// against the trend included (lacheck.py's extrema_dense; DESIGN.md section 6).
+  int extrema_dense = 0;
+  /// Per smooth part (between corners): reversals of the curvature's trend at its
+  /// joints, arcs and lines skipped; a closed curve without corners counts its seam.
+  /// Inflections are not counted. The figure to hold against the user's cap
+  /// (SegmentationOptions::max_extrema).
+  std::vector<int> extrema_per_part;
+  int max_extrema_per_part = 0;  // the largest of extrema_per_part
+  double max_abs_kappa = 0.0;
+  double min_radius = INFINITY;  // 1 / max_abs_kappa: the tightest bend (infinite for a line)
   int segments = 0;
   int corners = 0;
   double diagonal = 0.0;  // bounding-box diagonal of the input points

@@ -12,8 +12,8 @@
 //  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
 //    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
 //    relative);
-//  - glyph contours (fitted with assume_closed, see kDataSets), the airfoils and the $1
-//    'circle' gestures come out closed (curve.closed);
+//  - glyph contours (fitted with assume_closed, see tests/shared_data_sets.h), the
+//    airfoils and the $1 'circle' gestures come out closed (curve.closed);
 //  - the $1 caret, v, rectangle, triangle and star keep their corners
 //    (quality.corners >= 1; the rectangle >= 3); an airfoil has one, its trailing edge
 //    (its nose is round: a .dat is a profile, Stroke::profile).
@@ -34,11 +34,15 @@
 
 #include "app/io/point_file.h"
 #include "fitting/pipeline.h"
+#include "tests/shared_data_sets.h"
 
 namespace la {
 namespace {
 
 namespace fs = std::filesystem;
+using test::DataSet;
+using test::filesOf;
+using test::kDataSets;
 
 const fs::path kData = LAFAIR_SHARED_DATA_DIR;
 
@@ -59,42 +63,6 @@ constexpr double kDeviationAllowance = 1e-9;
 // diagonal are one; points within 1e-9 of the diagonal of one line are collinear.
 constexpr double kDistinctFraction = 1e-9;
 constexpr double kCollinearFraction = 1e-9;
-
-struct DataSet {
-  const char* name;
-  const char* folder;     // relative to the data folder, searched recursively
-  const char* extension;  // lower case, with the dot
-  // Glyph contours are fitted with CleanupOptions::assume_closed, the option stroke.h
-  // documents for font outlines: their CSVs do not sample a contour's closing straight
-  // edge (the implicit line back to the start), so some contours end 25-90% of their
-  // diagonal from their start (DejaVuSans_a #0, _e #1, _g #1) and no gap test can
-  // tell them from an open stroke. Everything else: default options.
-  bool assume_closed = false;
-};
-
-const DataSet kDataSets[] = {
-    {"dollar1", "strokes/dollar1_unistroke_s01_pilot", ".csv"},
-    {"mmg", "strokes/mmg_s10_stylus_medium", ".csv"},
-    {"omniglot", "strokes/omniglot_small1_sample", ".csv"},
-    {"airfoils", "curves/airfoils", ".dat"},
-    {"kanjivg_csv", "curves/kanjivg", ".csv"},
-    {"kanjivg_svg", "curves/kanjivg", ".svg"},
-    {"glyphs", "curves/glyphs_dejavusans", ".csv", true},
-};
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
-std::vector<fs::path> filesOf(const fs::path& folder, const std::string& extension) {
-  std::vector<fs::path> out;
-  if (!fs::is_directory(folder)) return out;
-  for (const auto& entry : fs::recursive_directory_iterator(folder))
-    if (entry.is_regular_file() && lower(entry.path().extension().string()) == extension) out.push_back(entry.path());
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 // Independent test of the input errors fitStroke must throw StrokeError for (true), and
 // of strokes whose points all lie on one line (`collinear`).
@@ -169,8 +137,7 @@ void fitDataSet(const DataSet& set) {
   const std::vector<fs::path> files = filesOf(kData / set.folder, set.extension);
   ASSERT_FALSE(files.empty()) << "no " << set.extension << " files under " << (kData / set.folder);
 
-  FitOptions options;  // the defaults (default tolerance: 0.5% of the diagonal)
-  options.cleanup.assume_closed = set.assume_closed;
+  const FitOptions options = test::fitOptionsFor(set);  // the defaults (tolerance: 0.5% of the diagonal)
   int strokes = 0, fitted = 0, straight = 0, rejected = 0, raised = 0, failed = 0;
   long segments = 0, extrema = 0;  // totals over the fitted strokes (fairness: few of both)
   double worst_ratio = 0.0;

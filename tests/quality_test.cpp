@@ -7,6 +7,13 @@
 // The oracle's polyline has 20,000 samples per segment, so its own error (the sagitta
 // kappa h^2 / 8) is far below the 1e-6 relative resolution asked of distancesToCurve;
 // the two must agree within 2e-6 of the diagonal.
+//
+// The curvature counts and the tightest radius (measureQuality) against curves built
+// with known curvature: G2 chains of clothoids (alpha = -1, curvature linear in arc
+// length) and arcs whose rises, falls, corner jumps and seams are counted by hand, as
+// ../shared/tools/lacheck.py counts them (extrema_dense: reversals of the curvature along
+// the whole curve, a jump at a corner included; extrema_per_part: reversals of the trend
+// at the joints of each part between corners, arcs skipped).
 
 #include <gtest/gtest.h>
 
@@ -17,6 +24,7 @@
 
 #include "core/curve.h"
 #include "fitting/quality.h"
+#include "test_support.h"
 
 namespace la {
 namespace {
@@ -144,6 +152,193 @@ TEST(StrayFromPoints, HalfCircleOverItsDiameterAndOverItsOwnPoints) {
   const double stray = strayFromPoints(half, on, 10.0);
   EXPECT_LE(stray, sagitta * (1 + 1e-6));
   EXPECT_GE(stray, 0.9 * sagitta);  // a sample near the middle of some chord
+}
+
+
+// --- Curvature extrema and the tightest radius.
+
+constexpr double kClothoid = -1.0;  // alpha: curvature linear in arc length
+constexpr double kPi = std::numbers::pi;
+
+Curve curveOf(const std::vector<LaSegment>& chain, bool closed = false) {
+  Curve c;
+  c.closed = closed;
+  for (const LaSegment& s : chain) c.pieces.push_back({s});
+  return c;
+}
+
+// The chain's own points (its diagonal is the curve's).
+QualityFigures measure(const Curve& curve) {
+  std::vector<LaSegment> chain;
+  for (const CurvePiece& p : curve.pieces) chain.push_back(p.segment);
+  return measureQuality(curve, test::sampleChain(chain, 50, 0.0, 1, curve.closed));
+}
+
+// Appends a clothoid from kappa_start to kappa_end after the curve's last segment,
+// G1 there, or turned by `corner` radians and marked as a corner.
+void appendClothoid(Curve& c, double length, double kappa_start, double kappa_end, double corner = 0.0) {
+  const LaSegment& last = c.pieces.back().segment;
+  c.pieces.push_back({LaSegment(kClothoid, length, last.end(), last.theta(last.length()) + corner, kappa_start, kappa_end),
+                      corner != 0.0});
+}
+
+TEST(CurvatureExtrema, RiseFallRiseHasTwoReversals) {
+  const Curve c = curveOf(test::buildChain(Vec2(0, 0), 0.0, 0.5, {{kClothoid, 1.0, 2.0}, {kClothoid, 1.0, 0.8},
+                                                                  {kClothoid, 1.0, 1.5}}));
+  const QualityFigures q = measure(c);
+  EXPECT_EQ(q.extrema_dense, 2);  // a maximum at the first joint, a minimum at the second
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{2});
+  EXPECT_EQ(q.max_extrema_per_part, 2);
+  EXPECT_DOUBLE_EQ(q.max_abs_kappa, 2.0);
+  EXPECT_DOUBLE_EQ(q.min_radius, 0.5);
+}
+
+TEST(CurvatureExtrema, TheCountsAndTheRadiusScaleAsTheCurve) {
+  // The rise-fall-rise chain 1000 times larger: the same counts, radii 1000 times larger.
+  constexpr double kScale = 1000.0;
+  const Curve c = curveOf(test::buildChain(Vec2(0, 0), 0.0, 0.5 / kScale,
+                                           {{kClothoid, kScale, 2.0 / kScale}, {kClothoid, kScale, 0.8 / kScale},
+                                            {kClothoid, kScale, 1.5 / kScale}}));
+  const QualityFigures q = measure(c);
+  EXPECT_EQ(q.extrema_dense, 2);
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{2});
+  EXPECT_NEAR(q.min_radius, 0.5 * kScale, 1e-12 * kScale);
+}
+
+TEST(CurvatureExtrema, ArcsAreSkippedAndInflectionsAreNoExtrema) {
+  // rise 0.5 -> 2, an arc of curvature 2, fall 2 -> 0 (an inflection end), fall 0 -> -1:
+  // one maximum (the plateau, counted once) and one inflection.
+  Curve c = curveOf(test::buildChain(Vec2(0, 0), 0.0, 0.5, {{kClothoid, 1.0, 2.0}}));
+  const LaSegment& rise = c.pieces.back().segment;
+  c.pieces.push_back({LaSegment::arc(0.5, rise.end(), rise.theta(1.0), 2.0)});
+  appendClothoid(c, 1.0, 2.0, 0.0);
+  appendClothoid(c, 1.0, 0.0, -1.0);
+  const QualityFigures q = measure(c);
+  EXPECT_EQ(q.extrema_dense, 1);
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{1});
+  EXPECT_EQ(q.inflections, 1);
+  EXPECT_DOUBLE_EQ(q.min_radius, 0.5);
+}
+
+TEST(CurvatureExtrema, ACornerJumpAgainstTheTrendIsOneReversalAlongTheCurve) {
+  // rise 0.5 -> 2, a corner, then 1 -> 0.5: the jump down at the corner reverses the rise
+  // (the side curls into the corner), and the fall goes on the same way: one reversal
+  // along the curve, none inside either part.
+  Curve against = curveOf(test::buildChain(Vec2(0, 0), 0.0, 0.5, {{kClothoid, 1.0, 2.0}}));
+  appendClothoid(against, 1.0, 1.0, 0.5, 1.0);
+  QualityFigures q = measure(against);
+  EXPECT_EQ(q.extrema_dense, 1);
+  EXPECT_EQ(q.extrema_per_part, (std::vector<int>{0, 0}));
+  EXPECT_EQ(q.corners, 1);
+
+  // ... and rising again after the corner: the jump is a minimum between two rises.
+  Curve back = curveOf(test::buildChain(Vec2(0, 0), 0.0, 0.5, {{kClothoid, 1.0, 2.0}}));
+  appendClothoid(back, 1.0, 1.0, 3.0, 1.0);
+  q = measure(back);
+  EXPECT_EQ(q.extrema_dense, 2);
+  EXPECT_EQ(q.extrema_per_part, (std::vector<int>{0, 0}));
+  EXPECT_DOUBLE_EQ(q.min_radius, 1.0 / 3.0);
+
+  // A jump with the trend (up, then on rising) is no reversal.
+  Curve with = curveOf(test::buildChain(Vec2(0, 0), 0.0, 0.5, {{kClothoid, 1.0, 2.0}}));
+  appendClothoid(with, 1.0, 3.0, 4.0, 1.0);
+  q = measure(with);
+  EXPECT_EQ(q.extrema_dense, 0);
+  EXPECT_EQ(q.extrema_per_part, (std::vector<int>{0, 0}));
+}
+
+TEST(CurvatureExtrema, ACircleOfArcsHasNoneAndItsRadius) {
+  constexpr double kRadius = 2.5;
+  Curve c;
+  c.closed = true;
+  for (int k = 0; k < 4; ++k) {
+    const double a = k * kPi / 2;
+    c.pieces.push_back({LaSegment::arc(kRadius * kPi / 2, kRadius * Vec2(std::cos(a), std::sin(a)), a + kPi / 2,
+                                       1.0 / kRadius)});
+  }
+  const QualityFigures q = measure(c);
+  EXPECT_EQ(q.extrema_dense, 0);
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{0});
+  EXPECT_DOUBLE_EQ(q.max_abs_kappa, 1.0 / kRadius);
+  EXPECT_DOUBLE_EQ(q.min_radius, kRadius);
+}
+
+// An oval: rise 0.5 -> 2, fall 2 -> 0.5, twice, each segment turning pi/2 (a turning of
+// pi repeated closes the curve). Two maxima and two minima, one of them at the seam.
+Curve oval() {
+  Curve c;
+  c.closed = true;
+  Vec2 p(0, 0);
+  double theta = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const bool rising = k % 2 == 0;
+    c.pieces.push_back({LaSegment::withTurning(kClothoid, kPi / 2, p, theta, rising ? 0.5 : 2.0, rising ? 2.0 : 0.5)});
+    p = c.pieces.back().segment.end();
+    theta += kPi / 2;
+  }
+  return c;
+}
+
+TEST(CurvatureExtrema, AClosedCurveCountsItsSeam) {
+  const Curve c = oval();
+  ASSERT_LT((c.pieces.back().segment.end() - c.pieces.front().segment.start()).norm(), 1e-9) << "the oval closes";
+  QualityFigures q = measure(c);
+  EXPECT_EQ(q.extrema_dense, 4);
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{4});
+  EXPECT_DOUBLE_EQ(q.min_radius, 0.5);
+
+  // Open, the seam's minimum is gone.
+  Curve open = c;
+  open.closed = false;
+  q = measure(open);
+  EXPECT_EQ(q.extrema_dense, 3);
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{3});
+
+  // A corner at the seam (where the curvature is continuous): the part from the corner
+  // round to it has 3 reversals at its joints; along the curve the seam's minimum stays.
+  Curve cornered = c;
+  cornered.pieces[0].corner = true;
+  q = measure(cornered);
+  EXPECT_EQ(q.extrema_dense, 4);
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{3});
+}
+
+TEST(CurvatureExtrema, TightestRadiusOfAClothoidAndOfALine) {
+  constexpr double kKappa = 4.0;
+  Curve clothoid;
+  clothoid.pieces.push_back({LaSegment(kClothoid, 1.0, Vec2(0, 0), 0.0, 0.0, kKappa)});
+  QualityFigures q = measure(clothoid);
+  EXPECT_DOUBLE_EQ(q.max_abs_kappa, kKappa);
+  EXPECT_DOUBLE_EQ(q.min_radius, 1.0 / kKappa);
+  EXPECT_EQ(q.extrema_dense, 0);
+
+  Curve line;
+  line.pieces.push_back({LaSegment::arc(3.0, Vec2(0, 0), 0.4, 0.0)});
+  q = measure(line);
+  EXPECT_EQ(q.max_abs_kappa, 0.0);
+  EXPECT_EQ(q.min_radius, INFINITY);
+  EXPECT_EQ(q.extrema_dense, 0);
+}
+
+TEST(CurvatureExtrema, ChangesBelowTheThresholdCountAsTheDenseWalkCountsThem) {
+  // Diagonal 1, so a change counts when it exceeds 1e-6. A rise of 1.5e-6 then a fall of
+  // 1.2e-6: walked along lacheck.py's 2001 samples per segment, the rise changes once,
+  // at the first sample 1e-6 above the start, and leaves the anchor there; the fall ends
+  // only 0.3e-6 above the start, 0.7e-6 below the anchor: no reversal. (Walked over the
+  // segment ends alone, the anchor would be the top and the fall a reversal.)
+  Curve c;
+  c.pieces.push_back({LaSegment(kClothoid, 1.0, Vec2(0, 0), 0.0, 1.0, 1.0 + 1.5e-6)});
+  appendClothoid(c, 1.0, 1.0 + 1.5e-6, 1.0 + 0.3e-6);
+  const std::vector<Vec2> diagonal_one{Vec2(0, 0), Vec2(0.6, 0.8)};
+  QualityFigures q = measureQuality(c, diagonal_one);
+  EXPECT_EQ(q.extrema_dense, 0);
+  // A fall of 2.6e-6 ends 1.1e-6 below the anchor: a reversal.
+  c.pieces.back() = {LaSegment(kClothoid, 1.0, c.pieces.back().segment.start(), c.pieces.back().segment.theta0(),
+                               1.0 + 1.5e-6, 1.0 - 1.1e-6)};
+  q = measureQuality(c, diagonal_one);
+  EXPECT_EQ(q.extrema_dense, 1);
+  // The joints see the trends however small: a maximum.
+  EXPECT_EQ(q.extrema_per_part, std::vector<int>{1});
 }
 
 }  // namespace

@@ -36,6 +36,11 @@ nlohmann::json qualityToJson(const QualityFigures& q) {
           {"g2_gap", q.g2_gap},
           {"extrema", q.extrema},
           {"inflections", q.inflections},
+          {"extrema_dense", q.extrema_dense},
+          {"extrema_per_part", q.extrema_per_part},
+          {"max_extrema_per_part", q.max_extrema_per_part},
+          {"max_abs_kappa", q.max_abs_kappa},
+          {"min_radius", number(q.min_radius)},
           {"segments", q.segments},
           {"corners", q.corners},
           {"diagonal", q.diagonal}};

@@ -1,0 +1,238 @@
+// The whole pipeline (fitting/pipeline.h, fitStroke) on every stroke of the shared data
+// (../shared/data, see its SOURCES.md), per data set as tests/fit_data_test.cpp groups
+// them (tests/shared_data_sets.h: glyph contours with assume_closed, everything else
+// with the default options). Each data set is one Google Benchmark of one iteration that
+// fits all its strokes once; after them a table, one row per data set and one for all,
+// of the distribution over the fitted strokes (median / 90th / 99th percentile /
+// maximum, nearest rank) of:
+//  - time ms: FitResult::timings.total_ms, one stroke on one core;
+//  - segments;
+//  - extrema_dense: curvature reversals along the whole curve, a jump at a corner
+//    included (fitting/quality.h, counted as ../shared/tools/lacheck.py counts them);
+//  - max_dev/tol: the largest distance from a point over the tolerance the fit used
+//    (FitResult::tolerance: raised to the noise floor where the fit raised it);
+// and the tightest radius over the tolerance (min_radius / tolerance: its minimum over
+// the strokes, and the strokes that bend tighter than the tolerance), and with a cap on
+// extrema the smooth parts that have more (QualityFigures::extrema_per_part), of all
+// parts. Strokes fitStroke rejects as degenerate (StrokeError) are counted, not measured.
+// Below the table, per data set, the slowest stroke and the one with the tightest bend.
+//
+//   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--data=DIR]
+//
+// --max-extrema=N  FitOptions::segmentation.max_extrema = N (fitting/segmentation.h),
+//                  and the table counts the parts over N
+// --paper-only     FitOptions::polish = false: stages 1-6, as the app's live preview
+// --data=DIR       the shared data folder (default: ../shared/data beside the sources)
+// Google Benchmark's own flags (--benchmark_filter=glyphs, ...) work as usual.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/io/point_file.h"
+#include "fitting/pipeline.h"
+#include "tests/shared_data_sets.h"
+
+namespace la {
+namespace {
+
+namespace fs = std::filesystem;
+using test::DataSet;
+using test::kDataSets;
+
+struct Settings {
+  FitOptions options;  // the defaults, with the flags applied
+  fs::path data = LAFAIR_SHARED_DATA_DIR;
+};
+Settings g_settings;
+
+// What the table reads off one fitted stroke.
+struct StrokeFigures {
+  std::string where;  // file (relative to the data folder) and stroke index
+  double ms = 0.0;
+  int segments = 0;
+  int extrema_dense = 0;
+  double deviation = 0.0;  // max_dev / tolerance
+  double radius = 0.0;     // min_radius / tolerance
+  int parts = 0;
+  int parts_over_cap = 0;
+};
+
+struct SetFigures {
+  bool ran = false;
+  int files = 0, strokes = 0, rejected = 0;
+  std::vector<StrokeFigures> fitted;
+};
+std::vector<SetFigures> g_results(std::size(kDataSets));
+
+StrokeFigures figuresOf(std::string where, const FitResult& r, int cap) {
+  const QualityFigures& q = r.quality;
+  StrokeFigures f{std::move(where), r.timings.total_ms, q.segments, q.extrema_dense, q.max_dev / r.tolerance,
+                  q.min_radius / r.tolerance, static_cast<int>(q.extrema_per_part.size())};
+  if (cap >= 0)
+    f.parts_over_cap = static_cast<int>(std::count_if(q.extrema_per_part.begin(), q.extrema_per_part.end(),
+                                                      [cap](int extrema) { return extrema > cap; }));
+  return f;
+}
+
+void BM_FitDataSet(benchmark::State& state, std::size_t index) {
+  const DataSet& set = kDataSets[index];
+  const std::vector<fs::path> files = test::filesOf(g_settings.data / set.folder, set.extension);
+  std::vector<Stroke> strokes;
+  std::vector<std::string> where;
+  for (const fs::path& file : files) {
+    std::vector<Stroke> some = readStrokes(file);
+    for (std::size_t k = 0; k < some.size(); ++k)
+      where.push_back(fs::relative(file, g_settings.data).string() + " #" + std::to_string(k));
+    strokes.insert(strokes.end(), std::make_move_iterator(some.begin()), std::make_move_iterator(some.end()));
+  }
+  if (strokes.empty()) {
+    state.SkipWithError(("no strokes under " + (g_settings.data / set.folder).string()).c_str());
+    return;
+  }
+  const FitOptions options = test::fitOptionsFor(set, g_settings.options);
+  SetFigures figures;
+  for (auto _ : state) {
+    figures = {true, static_cast<int>(files.size()), static_cast<int>(strokes.size()), 0, {}};
+    for (std::size_t i = 0; i < strokes.size(); ++i) {
+      try {
+        figures.fitted.push_back(figuresOf(where[i], fitStroke(strokes[i], options), options.segmentation.max_extrema));
+      } catch (const StrokeError&) {
+        ++figures.rejected;
+      }
+    }
+  }
+  state.counters["strokes"] = figures.strokes;
+  state.counters["rejected"] = figures.rejected;
+  g_results[index] = std::move(figures);
+}
+
+// Nearest rank: the smallest value with at least the fraction p of the values at or below
+// it (the 1e-9 keeps a product such as 0.9 * 10 from rounding up to the next rank).
+double percentile(std::vector<double> values, double p) {
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size()) - 1e-9));
+  return values[std::max<std::size_t>(rank, 1) - 1];
+}
+
+// "median p90 p99 max" of one figure of the strokes, each in `format`.
+template <typename Figure>
+std::string distribution(const std::vector<StrokeFigures>& strokes, Figure figure, const char* format) {
+  std::vector<double> values;
+  for (const StrokeFigures& s : strokes) values.push_back(figure(s));
+  std::string out;
+  char cell[32];
+  for (double p : {0.5, 0.9, 0.99, 1.0}) {
+    std::snprintf(cell, sizeof cell, format, percentile(values, p));
+    out += cell;
+  }
+  return out;
+}
+
+void printRow(const char* name, const SetFigures& set, int cap) {
+  std::printf("%-12s %5d %7d %4d", name, set.files, set.strokes, set.rejected);
+  const std::vector<StrokeFigures>& f = set.fitted;
+  if (f.empty()) {
+    std::printf("  (nothing fitted)\n");
+    return;
+  }
+  double tightest = INFINITY;
+  int tight = 0, parts = 0, over = 0;
+  for (const StrokeFigures& s : f) {
+    tightest = std::min(tightest, s.radius);
+    if (s.radius < 1.0) ++tight;
+    parts += s.parts, over += s.parts_over_cap;
+  }
+  std::printf(" |%s |%s |%s |%s | %8.3g %5d %5.1f%%", distribution(f, [](auto& s) { return s.ms; }, "%7.2f").c_str(),
+              distribution(f, [](auto& s) { return s.segments; }, "%4.0f").c_str(),
+              distribution(f, [](auto& s) { return s.extrema_dense; }, "%4.0f").c_str(),
+              distribution(f, [](auto& s) { return s.deviation; }, "%6.3f").c_str(), tightest, tight,
+              100.0 * tight / f.size());
+  if (cap >= 0) std::printf(" | %5d of %5d", over, parts);
+  std::printf("\n");
+}
+
+void printTable() {
+  const FitOptions& o = g_settings.options;
+  const int cap = o.segmentation.max_extrema;
+  std::printf("\nShared data %s; options: %s, max_extrema %d\n", g_settings.data.lexically_normal().string().c_str(),
+              o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)", cap);
+  std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s%s\n", "", "", "", "", "time ms", "segments",
+              "extrema_dense", "max_dev/tol", "min_radius/tol", cap >= 0 ? " | parts over the cap" : "");
+  std::printf("%-12s %5s %7s %4s |%7s%7s%7s%7s |%4s%4s%4s%4s |%4s%4s%4s%4s |%6s%6s%6s%6s | %8s %5s %6s\n", "data set",
+              "files", "strokes", "rej", "med", "p90", "p99", "max", "med", "p90", "p99", "max", "med", "p90", "p99", "max",
+              "med", "p90", "p99", "max", "min", "< 1", "%");
+  SetFigures all;
+  for (std::size_t i = 0; i < g_results.size(); ++i) {
+    const SetFigures& set = g_results[i];
+    if (!set.ran) continue;
+    printRow(kDataSets[i].name, set, cap);
+    all.files += set.files, all.strokes += set.strokes, all.rejected += set.rejected;
+    all.fitted.insert(all.fitted.end(), set.fitted.begin(), set.fitted.end());
+  }
+  printRow("all", all, cap);
+  std::printf("\n");
+  for (std::size_t i = 0; i < g_results.size(); ++i) {
+    const std::vector<StrokeFigures>& f = g_results[i].fitted;
+    if (f.empty()) continue;
+    const auto slowest = std::max_element(f.begin(), f.end(), [](auto& a, auto& b) { return a.ms < b.ms; });
+    const auto tightest = std::min_element(f.begin(), f.end(), [](auto& a, auto& b) { return a.radius < b.radius; });
+    std::printf("%-12s slowest %s (%.1f ms); tightest bend %s (min_radius/tol %.3g)\n", kDataSets[i].name,
+                slowest->where.c_str(), slowest->ms, tightest->where.c_str(), tightest->radius);
+  }
+}
+
+// Takes this program's flags out of argv (Google Benchmark rejects flags it does not
+// know); false on a malformed one.
+bool takeFlags(int& argc, char** argv) {
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg.starts_with("--max-extrema=")) {
+      const std::string value(arg.substr(std::string_view("--max-extrema=").size()));
+      std::size_t used = 0;
+      try {
+        g_settings.options.segmentation.max_extrema = std::stoi(value, &used);
+      } catch (const std::logic_error&) {
+        return false;
+      }
+      if (used != value.size() || g_settings.options.segmentation.max_extrema < -1) return false;
+    } else if (arg == "--paper-only") {
+      g_settings.options.polish = false;
+    } else if (arg.starts_with("--data=")) {
+      g_settings.data = arg.substr(std::string_view("--data=").size());
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  return true;
+}
+
+}  // namespace
+}  // namespace la
+
+int main(int argc, char** argv) {
+  if (!la::takeFlags(argc, argv)) {
+    std::fprintf(stderr, "usage: %s [--max-extrema=N] [--paper-only] [--data=DIR] [benchmark flags]\n", argv[0]);
+    return 2;
+  }
+  for (std::size_t i = 0; i < std::size(la::test::kDataSets); ++i)
+    benchmark::RegisterBenchmark((std::string("BM_FitDataSet/") + la::test::kDataSets[i].name).c_str(), la::BM_FitDataSet, i)
+        ->Iterations(1)
+        ->Unit(benchmark::kMillisecond);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  la::printTable();
+  return 0;
+}

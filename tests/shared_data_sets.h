@@ -1,0 +1,60 @@
+#pragma once
+// The data sets of the shared data (../shared/data, see its SOURCES.md) as the tests
+// and benchmarks that fit them all group them: which files, and the options their
+// strokes are fitted with. Used by tests/fit_data_test.cpp and
+// tests/benchmarks/data_benchmark.cpp.
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fitting/pipeline.h"
+
+namespace la::test {
+
+struct DataSet {
+  const char* name;
+  const char* folder;     // relative to the data folder, searched recursively
+  const char* extension;  // lower case, with the dot
+  // Glyph contours are fitted with CleanupOptions::assume_closed, the option stroke.h
+  // documents for font outlines: their CSVs do not sample a contour's closing straight
+  // edge (the implicit line back to the start), so some contours end 25-90% of their
+  // diagonal from their start (DejaVuSans_a #0, _e #1, _g #1) and no gap test can
+  // tell them from an open stroke. Everything else: default options.
+  bool assume_closed = false;
+};
+
+inline constexpr DataSet kDataSets[] = {
+    {"dollar1", "strokes/dollar1_unistroke_s01_pilot", ".csv"},
+    {"mmg", "strokes/mmg_s10_stylus_medium", ".csv"},
+    {"omniglot", "strokes/omniglot_small1_sample", ".csv"},
+    {"airfoils", "curves/airfoils", ".dat"},
+    {"kanjivg_csv", "curves/kanjivg", ".csv"},
+    {"kanjivg_svg", "curves/kanjivg", ".svg"},
+    {"glyphs", "curves/glyphs_dejavusans", ".csv", true},
+};
+
+/// `options` with what the set's strokes need on top.
+inline FitOptions fitOptionsFor(const DataSet& set, FitOptions options = {}) {
+  options.cleanup.assume_closed = set.assume_closed;
+  return options;
+}
+
+/// The files under `folder` (recursively) whose extension is `extension` in any case,
+/// sorted; none if the folder does not exist.
+inline std::vector<std::filesystem::path> filesOf(const std::filesystem::path& folder, const std::string& extension) {
+  auto lower = [](std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+  };
+  std::vector<std::filesystem::path> out;
+  if (!std::filesystem::is_directory(folder)) return out;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(folder))
+    if (entry.is_regular_file() && lower(entry.path().extension().string()) == extension) out.push_back(entry.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace la::test
