@@ -441,5 +441,54 @@ TEST(SmoothWithBSpline, FarFromTheOriginAndRotatedStillWithinTolerance) {
   expectWithinTolerance(r, pts, kTol);
 }
 
+// ---------------------------------------------------------------------------------
+// Known defects of smoothWithBSpline, found by these tests (see the report on branch
+// stagetests). Disabled because the stage code is not ours to change here; they return
+// when the open-end handling of the knot insertion is fixed (run them with
+// --gtest_also_run_disabled_tests).
+
+// Exact, densely sampled points of a sine wave, open: the tolerance is not met, and the
+// miss is always the first point. The spline's start retracts along the tangent (the
+// first point's foot parameter is clamped at t = 0 while its neighbours' slide towards
+// it), the first span ends up with fewer than kMinPointsToSplit points and the first
+// point's miss counts as a lone outlier, so no knot is added and the loop stops.
+// Observed: 400 points, tolerance 0.005: kIterationLimit, max error 0.00614 (25 spans);
+// 800 points, tolerance 0.01: max error 0.0205 (24 spans). 100 points reach 1e-4.
+TEST(SmoothWithBSplineKnownDefect, DISABLED_DenselySampledExactSineMeetsATightTolerance) {
+  const Sine sine;
+  for (const auto& [n, tol] : {std::pair{400, 0.005}, std::pair{800, 0.01}}) {
+    SCOPED_TRACE(std::to_string(n) + " points, tolerance " + std::to_string(tol));
+    const std::vector<Vec2> pts = sinePoints(sine, n, 0.0, 0);
+    expectWithinTolerance(smoothWithBSpline(pts, false, optionsFor(tol)), pts, tol);
+  }
+}
+
+// Very dense exact points (6400 on the same sine, spacing 0.01): the first spans empty
+// out, the spline's start runs away with only the 1e-14 jerk weight holding the empty
+// spans, and the result is far from the points. Observed at tolerance 0.03:
+// kIterationLimit, reported max error 18.1 (the sine's amplitude is 10; some foot
+// parameters sit on the runaway part), brute-force distance 0.67, 412 spans (more than
+// max_spans = 400), the spline's start at (19.3, 0.3) instead of near (0, 0).
+TEST(SmoothWithBSplineKnownDefect, DISABLED_VeryDenseExactSineStaysNearThePoints) {
+  const Sine sine;
+  constexpr double kTol = 0.03;
+  const std::vector<Vec2> pts = sinePoints(sine, 6400, 0.0, 0);
+  const SmoothingResult r = smoothWithBSpline(pts, false, optionsFor(kTol));
+  expectWithinTolerance(r, pts, kTol);
+  EXPECT_LT((r.spline.point(r.spline.tMin()) - pts.front()).norm(), kTol);
+}
+
+// max_spans is not a cap: every bad span of a round is split when the count before the
+// round is below it, so one round can overshoot it (to nearly twice the limit).
+// Observed: 100 exact sine points, tolerance 1e-4, max_spans 20: 32 spans.
+TEST(SmoothWithBSplineKnownDefect, DISABLED_MaxSpansCapsTheKnots) {
+  const Sine sine;
+  const std::vector<Vec2> pts = sinePoints(sine, 100, 0.0, 0);
+  SmoothingOptions o = optionsFor(1e-4);
+  o.max_spans = 20;
+  const SmoothingResult r = smoothWithBSpline(pts, false, o);
+  EXPECT_LE(spanCount(r.spline), 20) << r.report.message;
+}
+
 }  // namespace
 }  // namespace la
