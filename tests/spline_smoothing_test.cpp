@@ -442,16 +442,18 @@ TEST(SmoothWithBSpline, FarFromTheOriginAndRotatedStillWithinTolerance) {
 }
 
 // ---------------------------------------------------------------------------------
-// Known defects of smoothWithBSpline, found by these tests (see the report on branch
-// stagetests). Disabled because the stage code is not ours to change here; they return
-// when the open-end handling of the knot insertion is fixed (run them with
-// --gtest_also_run_disabled_tests).
+// Known defects of smoothWithBSpline, found while writing these tests. Disabled because
+// this branch adds tests only and does not touch the stage code; each returns (drop the
+// DISABLED_ prefix) when the defect it describes is fixed. Run them with
+// --gtest_also_run_disabled_tests.
 
 // Exact, densely sampled points of a sine wave, open: the tolerance is not met, and the
-// miss is always the first point. The spline's start retracts along the tangent (the
-// first point's foot parameter is clamped at t = 0 while its neighbours' slide towards
-// it), the first span ends up with fewer than kMinPointsToSplit points and the first
-// point's miss counts as a lone outlier, so no knot is added and the loop stops.
+// miss is always the first point. The spline's start falls short of it along the
+// tangent (400 points, tolerance 0.001: C(0) = (0.0099, 0.0099) for the point (0, 0),
+// whose foot parameter stays clamped at t = 0; the next points fit to 1e-5), the first
+// span holds fewer than kMinPointsToSplit (6) points and the first point's miss is taken
+// for a lone outlier (no neighbour on the same side), so no knot is added and the loop
+// stops with kIterationLimit.
 // Observed: 400 points, tolerance 0.005: kIterationLimit, max error 0.00614 (25 spans);
 // 800 points, tolerance 0.01: max error 0.0205 (24 spans). 100 points reach 1e-4.
 TEST(SmoothWithBSplineKnownDefect, DISABLED_DenselySampledExactSineMeetsATightTolerance) {
