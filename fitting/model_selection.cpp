@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "fitting/quality.h"
 
 namespace la {
 namespace {
@@ -31,6 +36,44 @@ constexpr double kSplitMargin = 0.15;
 constexpr double kHookRatio = 0.2;
 // A split is kept if it brings the worst point within the tolerance or this factor closer.
 constexpr double kMarkedGain = 0.99;
+// Segments merged for the cap on extrema may turn this much (radians): a spiral's
+// monotone curvature is one LA segment however far it turns.
+constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
+
+// The chain as a curve, its corners marked.
+Curve curveOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners, bool closed) {
+  Curve c;
+  c.closed = closed;
+  for (const LaSegment& s : chain) c.pieces.push_back({s, false});
+  for (const ChainCorner& k : corners) c.pieces[k.joint].corner = true;
+  return c;
+}
+
+// The circle closest to the points (least squares on x^2 + y^2 + D x + E y + F = 0),
+// as one closed arc starting at the foot of the first point; nullopt if the points are
+// on a line.
+std::optional<LaSegment> closestCircle(const std::vector<Vec2>& points) {
+  Eigen::MatrixXd a(points.size(), 3);
+  Eigen::VectorXd b(points.size());
+  const Vec2 origin = points.front();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Vec2 p = points[k] - origin;
+    a.row(static_cast<Eigen::Index>(k)) << p.x(), p.y(), 1.0;
+    b[static_cast<Eigen::Index>(k)] = -p.squaredNorm();
+  }
+  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(b);
+  const Vec2 centre = origin - 0.5 * Vec2(s[0], s[1]);
+  const double r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
+  if (!std::isfinite(r2) || !(r2 > 0.0)) return std::nullopt;
+  const double r = std::sqrt(r2);
+  // (turning the way the points go round)
+  double area = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) area += cross(points[k] - centre, points[(k + 1) % points.size()] - centre);
+  const double sign = area < 0.0 ? -1.0 : 1.0;
+  const Vec2 radial = (points.front() - centre).normalized();
+  const Vec2 start = centre + r * radial;
+  return LaSegment::arc(2.0 * std::numbers::pi * r, start, angleOf(Vec2(-radial.y(), radial.x()) * sign), sign / r);
+}
 
 std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners) {
   std::vector<Piece> out;
@@ -406,6 +449,75 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       out.fit = r;
     }
   };
+  // The cap on extrema (see the header): merges at the extrema of parts over it, the
+  // closest refit first, then a closed part's circle.
+  auto enforceCap = [&] {
+    const auto cap = static_cast<std::size_t>(options.max_extrema);
+    const double diagonal = boundingBoxDiagonal(points);
+    auto circle = [&] {
+      const auto c = closestCircle(points);
+      if (!c) return false;
+      auto r = attempt(Edit{{Piece{kZeroEndAlpha, c->kappaStart(), c->kappaEnd(), c->turning()}}, c->start(), c->theta0(), {}});
+      if (r) take(std::move(*r)), ++out.cap_merges;
+      return r.has_value();
+    };
+    // (a simple closed curve that is not a circle has at least 4 extrema: the four-vertex
+    // theorem)
+    const bool one_closed_part = closed && out.corners.empty();
+    for (int round = 0;; ++round) {
+      const std::vector<LaSegment> segs = out.fit.segments;
+      const std::size_t n = segs.size();
+      // The extrema of the parts over the cap, the weakest first: the smaller curvature
+      // change beside the joint, relative to the curvature there.
+      std::vector<std::pair<double, std::size_t>> candidates;
+      bool over = false;
+      for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(segs, out.corners, closed), diagonal)) {
+        if (joints.size() <= cap) continue;
+        over = true;
+        for (std::size_t j : joints) {
+          const LaSegment& a = segs[(j + n - 1) % n];
+          const LaSegment& b = segs[j];
+          const double k = b.kappaStart();
+          const double change = std::min(std::abs(k - a.kappaStart()), std::abs(b.kappaEnd() - k));
+          candidates.push_back({change / std::max(std::abs(k), 1.0 / diagonal), j});
+        }
+      }
+      if (!over) return;
+      if (one_closed_part && (cap < 4 || n == 1)) {
+        if (!circle()) out.over_cap = true;
+        return;
+      }
+      std::sort(candidates.begin(), candidates.end());
+      bool merged = false;
+      for (const auto& [weakness, j] : candidates) {
+        std::optional<Attempt> r;
+        if (j > 0) {
+          // (two segments meeting at an extremum with a zero curvature at each far end are
+          // no LA segment: then the spike goes, or one of them)
+          r = attempt(merge(segs, out.fit.feet, out.corners, j, kCapMaxTurning));
+          if (!r) r = attempt(collapse(segs, out.fit.feet, out.corners, j - 1, closed, 2));
+          if (!r) r = attempt(collapse(segs, out.fit.feet, out.corners, j - 1, closed));
+          if (!r) r = attempt(collapse(segs, out.fit.feet, out.corners, j, closed));
+        } else if (one_closed_part) {
+          // the seam: the closed chain started one segment later, merged at its new joint n - 1
+          std::vector<LaSegment> turned(segs.begin() + 1, segs.end());
+          turned.push_back(segs.front());
+          std::vector<ChainFoot> feet = out.fit.feet;
+          for (ChainFoot& f : feet) f.segment = (f.segment + n - 1) % n;
+          r = attempt(merge(turned, feet, {}, n - 1, kCapMaxTurning));
+        }
+        if (!r) continue;
+        take(std::move(*r));
+        ++out.cap_merges;
+        merged = true;
+        break;
+      }
+      if (!merged) {
+        if (!one_closed_part || !circle()) out.over_cap = true;
+        return;
+      }
+    }
+  };
   simplify(true);
   // The split at the worst point of a fit (an edit).
   auto splitAtWorst = [&](const ChainFitResult& from) {
@@ -439,6 +551,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     ++out.splits;
   }
   if (options.refine) simplify(false);
+  if (options.max_extrema >= 0) enforceCap();
   return out;
 }
 

@@ -35,6 +35,14 @@
 // removed, is below `significance` times the residual variance (the F-test of nested
 // least-squares models). So segments the points need stay, and the count follows the
 // stroke, not the noise.
+//
+// The cap on curvature extrema (SelectionOptions::max_extrema) is a hard limit, counted
+// per smooth part (between corners) as the quality figures count them
+// (QualityFigures::extrema_per_part). While a part has more, the two segments
+// meeting at one of its extrema are merged (the merge whose refit stays closest to the
+// points), whatever the deviation costs; a closed part without corners that still has
+// too many, or whose cap is under 4 (a simple closed curve other than a circle has at
+// least 4: the four-vertex theorem), becomes the circle closest to its points.
 
 #include <vector>
 
@@ -64,6 +72,8 @@ struct SelectionOptions {
   /// hooks beside corners and stubs are collapsed and nearly straight runs straightened
   /// (for segments chosen already).
   bool refine = true;
+  /// Curvature extrema allowed per smooth part (-1: no cap).
+  int max_extrema = -1;
   ChainFitOptions fit;
 };
 
@@ -71,6 +81,8 @@ struct SelectionResult {
   ChainFitResult fit;  // of the chain finally chosen
   std::vector<ChainCorner> corners;  // of that chain (options.fit.corners, renumbered by the edits)
   int splits = 0, collapses = 0, merges = 0, straightenings = 0;
+  int cap_merges = 0;     // merges the cap on extrema forced
+  bool over_cap = false;  // some part still has more extrema than the cap
 };
 
 /// Fits `chain` to `points` (fitChain with options.fit; `feet` as there) and edits it as

@@ -1,5 +1,6 @@
 #include "fitting/pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -63,7 +64,11 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
   auto fitOne = [&](const Part& part) {
     PartFit fit = fitPart(part, context, polishing);
-    if (!polishing) return fit;
+    if (!polishing) {
+      // (the paper's chain over the cap on extrema: the cap's merges, by stage 7's fit)
+      if (options.g2 != G2Method::kOff && overCap(fit.segments, part.closed, context)) polishPart(fit, part, context, false);
+      return fit;
+    }
     auto polish = [&](PartFit& f) {
       const auto tp = Clock::now();
       polishPart(f, part, context);
@@ -81,7 +86,11 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
     auto consider = [&](PartFit other) {
       polish(other);
-      const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable() : measure(other) < measure(fit);
+      // (G2 first, then the cap on extrema, then the deviation)
+      const bool other_capped = !overCap(other.segments, part.closed, context), capped = !overCap(fit.segments, part.closed, context);
+      const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable()
+                          : other_capped != capped             ? other_capped
+                                                               : measure(other) < measure(fit);
       if (better) fit = std::move(other);
     };
     // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
@@ -172,9 +181,14 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   }
   if (stray > kStrayWarning * r.tolerance)
     r.warnings.push_back("the curve strays up to " + std::to_string(stray) + " from the stroke, where no point is");
+  const int cap = options.segmentation.max_extrema, most = r.quality.max_extrema_per_part;
+  if (cap >= 0 && most > cap)
+    r.warnings.push_back("a smooth part keeps " + std::to_string(most) + " curvature extrema, more than the cap of " +
+                         std::to_string(cap) + ": no merge of its segments brings it lower");
   if (r.quality.max_dev > r.tolerance)
     r.warnings.push_back("the curve misses the tolerance: it passes up to " + std::to_string(r.quality.max_dev) +
-                         " from the points, the tolerance is " + std::to_string(r.tolerance));
+                         " from the points, the tolerance is " + std::to_string(r.tolerance) +
+                         (cap >= 0 ? " (the cap of " + std::to_string(cap) + " extrema per smooth part comes first)" : ""));
   r.timings.total_ms = msSince(start);
   return r;
 }

@@ -184,12 +184,6 @@ constexpr int kCheckerSteps = 2000;
 // value; its floor is 1 where ours is 1 / diagonal (a floor of 1 depends on the units).
 constexpr double kFlatTrend = 1e-12;
 
-// +1 for curvature rising along the segment, -1 falling, 0 for an arc or a line.
-int trendOf(const LaSegment& s, double diagonal) {
-  const double a = s.kappaStart(), b = s.kappaEnd();
-  if (std::abs(b - a) < kFlatTrend * std::max({std::abs(a), std::abs(b), 1.0 / diagonal})) return 0;
-  return b > a ? 1 : -1;
-}
 
 // Walks the curvature in curve order as lacheck.py's extrema_dense does: a sample that
 // differs from the anchor (the last sample that changed) by more than `eps` changes in
@@ -241,36 +235,43 @@ class ReversalCounter {
   int reversals_ = 0;
 };
 
-// Reversals of the trend at the joints of each smooth part, arcs and lines skipped (so
-// a plateau between a rise and a fall counts once), as lacheck.py's extrema_per_part:
-// parts run from one corner to the next (an open curve's first part from its start); a
-// closed curve without corners is one part whose seam counts too.
-std::vector<int> extremaPerPart(const Curve& curve, const std::vector<int>& trend) {
-  const int n = static_cast<int>(curve.pieces.size());
+}  // namespace
+
+int curvatureTrend(const LaSegment& s, double diagonal) {
+  const double a = s.kappaStart(), b = s.kappaEnd();
+  if (std::abs(b - a) < kFlatTrend * std::max({std::abs(a), std::abs(b), 1.0 / diagonal})) return 0;
+  return b > a ? 1 : -1;
+}
+
+// Parts run from one corner to the next (an open curve's first part from its start); a
+// closed curve without corners is one part whose seam counts too. Within a part, arcs
+// and lines are skipped, so a plateau between a rise and a fall counts once; the joint
+// named is the one after the last segment before the reversal that has a trend.
+std::vector<std::vector<std::size_t>> extremumJoints(const Curve& curve, double diagonal) {
+  const std::size_t n = curve.pieces.size();
   if (n == 0) return {};
-  std::vector<int> starts;
-  for (int i = 0; i < n; ++i)
+  std::vector<std::size_t> starts;
+  for (std::size_t i = 0; i < n; ++i)
     if (curve.pieces[i].corner) starts.push_back(i);
   const bool seam = curve.closed && starts.empty();
   if (starts.empty() || (!curve.closed && starts.front() != 0)) starts.insert(starts.begin(), 0);
-  std::vector<int> counts;
+  std::vector<std::vector<std::size_t>> parts;
   for (std::size_t k = 0; k < starts.size(); ++k) {
-    const int end = k + 1 < starts.size() ? starts[k + 1] : (curve.closed ? starts[0] + n : n);
-    int first = 0, last = 0, reversals = 0;
-    for (int i = starts[k]; i < end; ++i) {
-      const int t = trend[i % n];
+    const std::size_t end = k + 1 < starts.size() ? starts[k + 1] : (curve.closed ? starts[0] + n : n);
+    std::vector<std::size_t>& joints = parts.emplace_back();
+    int first = 0, last = 0;
+    std::size_t last_at = 0;
+    for (std::size_t i = starts[k]; i < end; ++i) {
+      const int t = curvatureTrend(curve.pieces[i % n].segment, diagonal);
       if (t == 0) continue;
       if (first == 0) first = t;
-      else if (t != last) ++reversals;
-      last = t;
+      else if (t != last) joints.push_back((last_at + 1) % n);
+      last = t, last_at = i;
     }
-    if (seam && first != 0 && last != first) ++reversals;
-    counts.push_back(reversals);
+    if (seam && first != 0 && last != first) joints.push_back(0);
   }
-  return counts;
+  return parts;
 }
-
-}  // namespace
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points) {
   QualityFigures q;
@@ -287,7 +288,7 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
 
   const std::size_t n = curve.pieces.size();
   std::vector<int> trend;
-  for (const CurvePiece& piece : curve.pieces) trend.push_back(trendOf(piece.segment, diag));
+  for (const CurvePiece& piece : curve.pieces) trend.push_back(curvatureTrend(piece.segment, diag));
   for (std::size_t j = 0; j < n; ++j) {
     if (curve.pieces[j].corner) ++q.corners;
     const bool has_joint_before = j > 0 || (curve.closed && n > 1);
@@ -301,7 +302,8 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
     const int ta = trend[(j + n - 1) % n], tb = trend[j];
     if (ta != 0 && tb != 0 && ta != tb) ++q.extrema;
   }
-  q.extrema_per_part = extremaPerPart(curve, trend);
+  for (const std::vector<std::size_t>& joints : extremumJoints(curve, diag))
+    q.extrema_per_part.push_back(static_cast<int>(joints.size()));
   for (int count : q.extrema_per_part) q.max_extrema_per_part = std::max(q.max_extrema_per_part, count);
 
   ReversalCounter reversals(kSmallestCurvatureChange / diag);

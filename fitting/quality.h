@@ -50,4 +50,13 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
 
+/// +1 for curvature rising along the segment, -1 falling, 0 for an arc or a line (its
+/// curvature changes by less than 1e-12 of its larger end value, or of 1 / diagonal).
+int curvatureTrend(const LaSegment& segment, double diagonal);
+
+/// The curvature extrema of each smooth part (between corners), as
+/// QualityFigures::extrema_per_part counts them: per part, the joints where the trend
+/// reverses (segment index of the joint; 0 for a closed curve's seam).
+std::vector<std::vector<std::size_t>> extremumJoints(const Curve& curve, double diagonal);
+
 }  // namespace la

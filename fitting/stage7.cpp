@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "fitting/model_selection.h"
 #include "fitting/paper_stages.h"
@@ -97,21 +98,30 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 
   co.max_points = kFitPoints * parts;
   co.max_iterations = kFitIterations;
   co.noise = context.noise.sigma;
+  so.max_extrema = options.segmentation.max_extrema;
   return so;
 }
 
 }  // namespace
 
-// Stage 7 on one part: fits its chain to the points and selects its segments
-// (fitting/model_selection.h), from stage 6's chain or, where that has no G2 chain, from
-// the spline. The result replaces the part's chain where it is within the tolerance,
-// closer to the points than that chain, or that chain has gaps; fit.max_dev is then
-// known.
-void polishPart(PartFit& fit, const Part& part, const FitContext& context) {
+bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context) {
+  const int cap = context.options.segmentation.max_extrema;
+  if (cap < 0) return false;
+  Curve curve;
+  curve.closed = closed;
+  for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
+  for (const std::vector<std::size_t>& joints : extremumJoints(curve, context.diagonal))
+    if (static_cast<int>(joints.size()) > cap) return true;
+  return false;
+}
+
+// (fits its chain to the points and selects its segments, fitting/model_selection.h)
+void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments) {
   if (!fit.spline) return;  // a straight part
   const FitOptions& options = context.options;
   const double tol = context.tolerance, diag = context.diagonal;
   SelectionOptions so = stage7Selection(context);
+  so.refine = choose_segments;
   ChainFitOptions& co = so.fit;
   co.closed = part.closed;
   co.fix_start = part.starts_at_corner;
@@ -144,15 +154,21 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context) {
   const ChainFitResult& polished = selected.fit;
   if (polished.report.status == SolveStatus::kBadInput) return;
   std::vector<LaSegment> segments = polished.segments;
-  if (co.closed || co.fix_end) {
+  if (co.closed && segments.size() == 1) {
+    // (a closed chain of one segment is a circle: closed exactly at its mean curvature)
+    const LaSegment& s = segments.front();
+    const double kappa = 0.5 * (s.kappaStart() + s.kappaEnd());
+    segments = {LaSegment::arc(2.0 * std::numbers::pi / std::abs(kappa), s.start(), s.theta0(), kappa)};
+  } else if (co.closed || co.fix_end) {
     const G2Options g2 = context.g2();
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
-  if (polished.max_distance > tol && fit.g2.usable()) {
+  if (polished.max_distance > tol && fit.g2.usable() && !overCap(fit.segments, part.closed, context)) {
     // Outside the tolerance: kept if closer to the points than the G2 chain it started
     // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
-    // (a kink where the user drew none is worse than a miss, which the figures report).
+    // (a kink where the user drew none is worse than a miss, which the figures report);
+    // so is one over the cap on extrema (the cap wins over the tolerance).
     fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }

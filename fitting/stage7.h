@@ -19,9 +19,14 @@ inline constexpr double kStrayWarning = 2.0;
 
 /// Stage 7 on one part, from stage 6's chain or, where that has no G2 chain, from the
 /// spline (fitting/spline_chain.h). The result replaces the part's chain where it is
-/// within the tolerance, closer to the points than that chain, or that chain has gaps;
-/// fit.max_dev is then known.
-void polishPart(PartFit& fit, const Part& part, const FitContext& context);
+/// within the tolerance, closer to the points than that chain, or that chain has gaps or
+/// more extrema than the cap (FitOptions::segmentation.max_extrema); fit.max_dev is then
+/// known. Without `choose_segments`, only the cap's merges edit the chain (the paper's
+/// pipeline over the cap).
+void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true);
+
+/// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
+bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);
 
 /// Stage 7 across corners: all parts' chains fitted as one chain whose corners are
 /// free. True if it changed the chains; false where a part has no G2 chain or the fit

@@ -1214,3 +1214,64 @@ TEST(PipelineStraight, ThereAndBackIsTwoLinesWithACorner) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// The cap on curvature extrema (segmentation.max_extrema) holds per smooth part, as the
+// quality figures count them, in both modes; without it the wave keeps its extrema (so
+// the cap has work to do). The deviation it costs is reported, not hidden.
+std::vector<Vec2> noisyWave(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  std::vector<Vec2> points;
+  for (int i = 0; i <= 300; ++i) {
+    const double x = 0.6 * i;
+    points.push_back(Vec2(x, 20.0 * std::sin(x / 15.0)) + Vec2(noise(rng), noise(rng)));
+  }
+  return points;
+}
+
+TEST(PipelineExtremaCap, HoldsPerPartInEveryMode) {
+  const std::vector<Vec2> wave = noisyWave(3);
+  ASSERT_GE(fit(wave).quality.max_extrema_per_part, 3) << "the wave has its extrema without a cap";
+  for (bool paper : {false, true}) {
+    for (int cap : {0, 1, 2}) {
+      FitOptions options;
+      options.polish = !paper;
+      options.segmentation.max_extrema = cap;
+      const FitResult r = fit(wave, options);
+      EXPECT_LE(r.quality.max_extrema_per_part, cap) << (paper ? "paper-only" : "default") << ", cap " << cap << "\n"
+                                                     << describeFit(r);
+      EXPECT_LT(r.quality.g2_gap, 1e-6);
+      const bool warned = std::any_of(r.warnings.begin(), r.warnings.end(),
+                                      [](const std::string& w) { return w.find("misses the tolerance") != std::string::npos; });
+      EXPECT_EQ(warned, r.quality.max_dev > r.tolerance) << "the cost of the cap is reported";
+    }
+  }
+}
+
+// A drawn circle with the cap under 4 (a closed curve other than a circle has at least
+// 4 extrema) is the circle closest to its points: one closed arc.
+TEST(PipelineExtremaCap, AClosedStrokeUnderFourExtremaIsACircle) {
+  std::mt19937 rng(8);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  std::vector<Vec2> points;
+  for (int i = 0; i < 120; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 120.0;
+    points.push_back(Vec2(40.0 * std::cos(a), 34.0 * std::sin(a)) + Vec2(noise(rng), noise(rng)));
+  }
+  points.push_back(points.front());
+  FitOptions options;
+  options.segmentation.max_extrema = 2;
+  const FitResult r = fit(points, options);
+  ASSERT_TRUE(r.curve.closed);
+  ASSERT_EQ(r.curve.pieces.size(), 1u) << describeFit(r);
+  const LaSegment& circle = r.curve.pieces[0].segment;
+  EXPECT_TRUE(circle.isCircular());
+  EXPECT_NEAR(1.0 / std::abs(circle.kappaStart()), 37.0, 1.5);  // between the half axes
+  EXPECT_EQ(r.quality.max_extrema_per_part, 0);
+}
+
+}  // namespace
+}  // namespace la
