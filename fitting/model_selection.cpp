@@ -349,6 +349,12 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     out.corners = std::move(a.corners);
   };
   int edits = 0;
+  auto outOfTime = [&] {
+    if (options.deadline == std::chrono::steady_clock::time_point::max()) return false;
+    if (std::chrono::steady_clock::now() < options.deadline) return false;
+    out.out_of_time = true;
+    return true;
+  };
   // An edit is kept if the refitted chain is within the tolerance (or no further outside
   // it than before) and the points do not object (the F-test above).
   auto keep = [&](const ChainFitResult& r) {
@@ -417,7 +423,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
-        if (edits >= options.max_edits) break;
+        if (edits >= options.max_edits || outOfTime()) break;
         auto r = attempt(c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
                          : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
                                                    : straighten(segs, out.fit.feet, out.corners, c.index, c.count));
@@ -537,7 +543,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance);
   };
   // Splits while some point is out of tolerance (and the split helps).
-  while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty()) {
+  while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty() &&
+         !outOfTime()) {
     const ChainFitResult unweighted = out.fit;
     reweigh();
     if (out.fit.max_distance <= options.tolerance) break;

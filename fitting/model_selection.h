@@ -44,6 +44,7 @@
 // too many, or whose cap is under 4 (a simple closed curve other than a circle has at
 // least 4: the four-vertex theorem), becomes the circle closest to its points.
 
+#include <chrono>
 #include <vector>
 
 #include "fitting/chain_fit.h"
@@ -74,6 +75,9 @@ struct SelectionOptions {
   bool refine = true;
   /// Curvature extrema allowed per smooth part (-1: no cap).
   int max_extrema = -1;
+  /// No edit starts after this (the cap's merges excepted): the chain as it is then is
+  /// the result.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   ChainFitOptions fit;
 };
 
@@ -83,6 +87,7 @@ struct SelectionResult {
   int splits = 0, collapses = 0, merges = 0, straightenings = 0;
   int cap_merges = 0;     // merges the cap on extrema forced
   bool over_cap = false;  // some part still has more extrema than the cap
+  bool out_of_time = false;  // the deadline stopped the edits
 };
 
 /// Fits `chain` to `points` (fitChain with options.fit; `feet` as there) and edits it as

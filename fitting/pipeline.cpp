@@ -52,6 +52,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
+  if (options.time_budget_ms > 0.0)
+    context.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
 
   if (r.cleaned.straight) {
     fitStraight(r);
@@ -95,11 +97,11 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     };
     // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
     // segment): a chain close to the points.
-    if (misses()) consider(fitPart(part, context, false));
+    if (misses() && !context.outOfTime()) consider(fitPart(part, context, false));
     // Pixel-quantized strokes: a spline through the stairs has an extremum at every
     // step and the chain from it strays; stages 2-6 on the points with their stairs
     // smoothed (stage 7 still fits the points themselves).
-    if (misses() && noise.on_grid) {
+    if (misses() && noise.on_grid && !context.outOfTime()) {
       Part smoothed = part;
       smoothed.points = withoutStairs(part.points, part.closed);
       consider(fitPart(smoothed, context, true));
@@ -118,7 +120,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // (a closed stroke's one part has a seam corner only if the clean-up found corners:
   // without, its points do not end with the start again)
   const bool seam_corner = closed && parts.size() == 1 && !r.cleaned.corners.empty();
-  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (seam_corner && k == 0));) {
+  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (seam_corner && k == 0)) && !context.outOfTime();) {
     const bool seam = k + 1 == parts.size();
     const PartFit& next = seam ? fits[0] : fits[k + 1];
     if (fits[k].max_dev <= r.tolerance && next.max_dev <= r.tolerance) {
@@ -150,7 +152,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
   }
   joinAtCorners(fits, parts, context.g2());
-  if (polishing) {
+  if (polishing && !context.outOfTime()) {
     const auto tp = Clock::now();
     if (fitAcrossCorners(fits, parts, closed, context))
       joinAtCorners(fits, parts, context.g2());  // (a closed chain's seam, to rounding)
@@ -189,6 +191,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     r.warnings.push_back("the curve misses the tolerance: it passes up to " + std::to_string(r.quality.max_dev) +
                          " from the points, the tolerance is " + std::to_string(r.tolerance) +
                          (cap >= 0 ? " (the cap of " + std::to_string(cap) + " extrema per smooth part comes first)" : ""));
+  r.out_of_time = context.outOfTime();
+  if (r.out_of_time)
+    r.warnings.push_back("the time budget of " + std::to_string(options.time_budget_ms) +
+                         " ms ran out: the best G2 chain found by then");
   r.timings.total_ms = msSince(start);
   return r;
 }

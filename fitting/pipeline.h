@@ -59,6 +59,12 @@ struct FitOptions {
   /// the app's live preview, which must keep up with the pen). Ignored with g2 = kOff
   /// (stage 7's chains are G2 by construction).
   bool polish = true;
+  /// Wall time the fit may take (ms; 0: no limit). When it runs out, stage 7 stops
+  /// editing and trying other starts, and the fit keeps the best G2 chain found so far,
+  /// with its true figures (FitResult::out_of_time says so). Stages 1-6 and the cap on
+  /// extrema are kept even then. The app's background fit uses it, so that a hard stroke
+  /// arrives in bounded time.
+  double time_budget_ms = 0.0;
 };
 
 /// One piece of the segmentation and how its LA segment was made.
@@ -96,6 +102,7 @@ struct FitResult {
   std::vector<PieceReport> pieces;    // stages 4-5, one per segment of `curve`
   SolveReport smoothing;              // worst part's smoothing report
   SolveReport g2;                     // worst part's G2 report
+  bool out_of_time = false;  // the time budget ran out: stage 7 stopped early
   std::vector<std::string> warnings;
 };
 

@@ -99,6 +99,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 
   co.max_iterations = kFitIterations;
   co.noise = context.noise.sigma;
   so.max_extrema = options.segmentation.max_extrema;
+  so.deadline = context.deadline;
   return so;
 }
 

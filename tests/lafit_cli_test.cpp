@@ -519,6 +519,19 @@ TEST_F(LafitCli, FitClosedMakesEveryGlyphContourClosed) {
 
 // ------------------------------------------------------------------ fit: input formats
 
+// The output names the options the curves were made with (the sketch file's reader and
+// writer), the time budget and the cap among them.
+TEST_F(LafitCli, FitWritesTheOptionsItUsed) {
+  copyData("curves/airfoils/clark-y.dat", "clark-y.dat");
+  const Outcome r = lafit({"fit", "clark-y.dat", "-o", "curve.json", "--time-budget", "500", "--max-extrema", "4"});
+  ASSERT_EQ(r.status, 0) << r;
+  const json options = readJson("curve.json").at("options");
+  EXPECT_EQ(options.at("time_budget_ms").get<double>(), 500.0);
+  EXPECT_EQ(options.at("max_extrema").get<int>(), 4);
+  EXPECT_EQ(options.at("polish").get<bool>(), true);
+  EXPECT_EQ(lafit({"fit", "clark-y.dat", "--time-budget", "-3"}).status, kExitUsage);
+}
+
 TEST_F(LafitCli, FitReadsAnAirfoilDat) {
   copyData("curves/airfoils/clark-y.dat", "clark-y.dat");
   const Outcome r = lafit({"fit", "clark-y.dat", "-o", "curve.json"});

@@ -1275,3 +1275,29 @@ TEST(PipelineExtremaCap, AClosedStrokeUnderFourExtremaIsACircle) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// A time budget that has run out before stage 7 starts: the fit still returns a G2
+// chain through the points (stages 1-6 and the first chain fit), says so, and its
+// figures are those of the curve it returns. Without a budget it does not say so.
+TEST(PipelineTimeBudget, ReturnsTheBestG2ChainSoFarWithTrueFigures) {
+  const std::vector<Vec2> wave = noisyWave(5);
+  FitOptions hurried;
+  hurried.time_budget_ms = 1e-6;
+  const FitResult r = fit(wave, hurried);
+  EXPECT_TRUE(r.out_of_time);
+  EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(),
+                          [](const std::string& w) { return w.find("time budget") != std::string::npos; }));
+  ASSERT_FALSE(r.curve.pieces.empty());
+  EXPECT_LT(r.quality.g2_gap, 1e-6);
+  EXPECT_LT(r.quality.g1_gap, 1e-9);
+  const QualityFigures again = measureQuality(r.curve, r.cleaned.points);
+  EXPECT_EQ(r.quality.max_dev, again.max_dev);
+  EXPECT_EQ(r.quality.segments, static_cast<int>(r.curve.pieces.size()));
+  EXPECT_FALSE(fit(wave).out_of_time);
+}
+
+}  // namespace
+}  // namespace la

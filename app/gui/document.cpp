@@ -5,35 +5,13 @@
 #include <stdexcept>
 
 #include "app/io/fit_json.h"
+#include "app/io/fit_options_json.h"
 #include "core/atomic_file.h"
 #include "fitting/user_edits.h"
 #include "nlohmann/json.hpp"
 
 namespace la::gui {
 namespace {
-
-nlohmann::json optionsToJson(const FitOptions& o) {
-  return {{"tolerance", o.tolerance_fraction},
-          {"max_extrema", o.segmentation.max_extrema},
-          {"significance", o.segmentation.significance},
-          {"g2", toString(o.g2)},
-          {"g2_threshold", o.g2_threshold},
-          {"corners", o.cleanup.detect_corners},
-          {"polish", o.polish}};
-}
-
-FitOptions optionsFromJson(const nlohmann::json& j) {
-  FitOptions o;
-  o.tolerance_fraction = j.value("tolerance", o.tolerance_fraction);
-  o.segmentation.max_extrema = j.value("max_extrema", o.segmentation.max_extrema);
-  o.segmentation.significance = j.value("significance", o.segmentation.significance);
-  const std::string g2 = j.value("g2", std::string("newton"));
-  o.g2 = g2 == "bisection" ? G2Method::kBisection : g2 == "off" ? G2Method::kOff : G2Method::kNewton;
-  o.g2_threshold = j.value("g2_threshold", o.g2_threshold);
-  o.cleanup.detect_corners = j.value("corners", true);
-  o.polish = j.value("polish", o.polish);
-  return o;
-}
 
 nlohmann::json pointsToJson(const std::map<int, Vec2>& points) {
   nlohmann::json j = nlohmann::json::object();
@@ -152,7 +130,7 @@ void Document::insertStroke(std::size_t index, const Stroke& raw, bool provision
 bool Document::completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit,
                            const std::string& error) {
   // (options are compared through their JSON form, which holds every one the app sets)
-  if (optionsToJson(options) != optionsToJson(options_)) return false;
+  if (fitOptionsToJson(options) != fitOptionsToJson(options_)) return false;
   for (DocumentStroke& s : strokes_) {
     if (s.id != id) continue;
     if (!s.provisional) return false;
@@ -215,7 +193,7 @@ void Document::save(const QString& path) const {
   }
   nlohmann::json constructions = nlohmann::json::array();
   for (const Construction& c : constructions_) constructions.push_back(c.toJson());
-  const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", optionsToJson(options_)},
+  const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", fitOptionsToJson(options_)},
                               {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}};
   writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
 }
@@ -233,7 +211,11 @@ void Document::load(const QString& path, bool provisional) {
   std::vector<DocumentStroke> loaded;
   FitOptions options;
   try {
-  options = optionsFromJson(doc.value("options", nlohmann::json::object()));
+  try {
+    options = fitOptionsFromJson(doc.value("options", nlohmann::json::object()));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(name + ": " + e.what());
+  }
   const auto& strokes = doc.at("strokes");
   for (std::size_t i = 0; i < strokes.size(); ++i) {
     Stroke raw;

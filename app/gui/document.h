@@ -72,6 +72,14 @@ class Document {
   void save(const QString& path) const;
   void load(const QString& path, bool provisional = false);  // fits as setOptions
 
+  /// The library's defaults with a time budget (FitOptions::time_budget_ms): the pen-up
+  /// fit of a hard stroke arrives within a quarter second, the best G2 chain by then.
+  static FitOptions appOptions() {
+    FitOptions o;
+    o.time_budget_ms = 250.0;
+    return o;
+  }
+
  private:
   void fit(DocumentStroke& s) const;
   void refit(DocumentStroke& s, bool provisional) const;  // fit(), or stages 1-6 only (provisional)
@@ -81,7 +89,7 @@ class Document {
   std::string editStroke(std::size_t stroke, Edit&& edit, Remember&& remember);
   std::vector<DocumentStroke> strokes_;
   std::vector<Construction> constructions_;
-  FitOptions options_;
+  FitOptions options_ = appOptions();
 };
 
 }  // namespace la::gui

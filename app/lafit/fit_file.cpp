@@ -3,6 +3,7 @@
 #include <new>
 
 #include "app/io/fit_json.h"
+#include "app/io/fit_options_json.h"
 #include "app/io/point_file.h"
 
 namespace la::cli {
@@ -62,6 +63,7 @@ FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, b
     out.errors.push_back(why);
   }
   out.document = curves.size() == 1 && !curves[0].contains("error") ? curves[0] : nlohmann::json{{"curves", curves}};
+  out.document["options"] = fitOptionsToJson(options);
   return out;
 }
 

@@ -22,6 +22,10 @@ FitOptions fitOptionsFrom(const Args& args) {
   o.cleanup.assume_closed = args.has("--closed");
   if (o.cleanup.assume_closed && !o.cleanup.detect_closed) throw UsageError("--closed and --no-close contradict each other");
   o.polish = !args.has("--paper-only");
+  o.time_budget_ms = args.number("--time-budget", 0.0);
+  if (!(o.time_budget_ms >= 0.0)) throw UsageError("--time-budget must be at least 0 (ms; 0: no limit)");
+  o.time_budget_ms = args.number("--time-budget", 0.0);
+  if (!(o.time_budget_ms >= 0.0)) throw UsageError("--time-budget must be at least 0 (ms; 0: no limit)");
   return o;
 }
 

@@ -10,7 +10,7 @@
 namespace la::cli {
 
 inline const std::set<std::string> kFitValued = {"--tolerance", "--tolerance-abs", "--max-extrema", "--g2",
-                                                 "--g2-threshold", "--significance"};
+                                                 "--g2-threshold", "--significance", "--time-budget"};
 inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--closed", "--paper-only", "--stages"};
 
 inline constexpr const char* kFitOptionsHelp = R"(fitting options:
@@ -32,6 +32,9 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
                        squares fit of the whole chain to the points and no choice of
                        its segments (stage 7, on by default: closer to the points,
                        truer alphas, the segments the points need)
+  --time-budget MS     wall time one stroke's fit may take (default 0: no limit); when it
+                       runs out, stage 7 stops and keeps the best G2 chain found so far,
+                       with a warning (the cap of --max-extrema still holds)
   --stages             include every intermediate stage in the JSON
 )";
 

@@ -17,11 +17,12 @@
 // parts. Strokes fitStroke rejects as degenerate (StrokeError) are counted, not measured.
 // Below the table, per data set, the slowest stroke and the one with the tightest bend.
 //
-//   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--data=DIR]
+//   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--time-budget=MS] [--data=DIR]
 //
 // --max-extrema=N  FitOptions::segmentation.max_extrema = N (fitting/segmentation.h),
 //                  and the table counts the parts over N
 // --paper-only     FitOptions::polish = false: stages 1-6, as the app's live preview
+// --time-budget=MS FitOptions::time_budget_ms = MS (the app's pen-up fit uses 250)
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // Google Benchmark's own flags (--benchmark_filter=glyphs, ...) work as usual.
 
@@ -163,8 +164,9 @@ void printRow(const char* name, const SetFigures& set, int cap) {
 void printTable() {
   const FitOptions& o = g_settings.options;
   const int cap = o.segmentation.max_extrema;
-  std::printf("\nShared data %s; options: %s, max_extrema %d\n", g_settings.data.lexically_normal().string().c_str(),
-              o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)", cap);
+  std::printf("\nShared data %s; options: %s, max_extrema %d, time budget %g ms\n",
+              g_settings.data.lexically_normal().string().c_str(), o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)",
+              cap, o.time_budget_ms);
   std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s%s\n", "", "", "", "", "time ms", "segments",
               "extrema_dense", "max_dev/tol", "min_radius/tol", cap >= 0 ? " | parts over the cap" : "");
   std::printf("%-12s %5s %7s %4s |%7s%7s%7s%7s |%4s%4s%4s%4s |%4s%4s%4s%4s |%6s%6s%6s%6s | %8s %5s %6s\n", "data set",
@@ -205,6 +207,14 @@ bool takeFlags(int& argc, char** argv) {
         return false;
       }
       if (used != value.size() || g_settings.options.segmentation.max_extrema < -1) return false;
+    } else if (arg.starts_with("--time-budget=")) {
+      const std::string value(arg.substr(std::string_view("--time-budget=").size()));
+      try {
+        g_settings.options.time_budget_ms = std::stod(value);
+      } catch (const std::logic_error&) {
+        return false;
+      }
+      if (!(g_settings.options.time_budget_ms >= 0.0)) return false;
     } else if (arg == "--paper-only") {
       g_settings.options.polish = false;
     } else if (arg.starts_with("--data=")) {
@@ -222,7 +232,8 @@ bool takeFlags(int& argc, char** argv) {
 
 int main(int argc, char** argv) {
   if (!la::takeFlags(argc, argv)) {
-    std::fprintf(stderr, "usage: %s [--max-extrema=N] [--paper-only] [--data=DIR] [benchmark flags]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--data=DIR] [benchmark flags]\n",
+                 argv[0]);
     return 2;
   }
   for (std::size_t i = 0; i < std::size(la::test::kDataSets); ++i)
