@@ -92,50 +92,11 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
     const bool free_end = kappa[(i + 1) % joints] != 0.0;
     const double end_sign = sign(turning[i]);
     const Vec2 target = spline.point(spline.wrap(spans[i].t1));
-    // unknowns: y = log|kappa_end| (when not an inflection), alpha
-    double y = free_end ? std::log(std::abs(kappa[(i + 1) % joints])) : 0.0;
     const bool zero_end = k0 == 0.0 || !free_end;
     const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
-    double alpha = zero_end ? -1.0 : kStage7StartAlpha;
-    auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
-      const double k1 = free_end ? end_sign * std::exp(yy) : 0.0;
-      try {
-        return LaSegment::withTurning(aa, turning[i], start, theta, k0, k1);
-      } catch (const std::invalid_argument&) {
-        return std::nullopt;
-      }
-    };
-    auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
-      const auto seg = build(yy, aa);
-      if (!seg) return std::nullopt;
-      return Vec2(seg->end() - target);
-    };
-    constexpr int kShootingSteps = 8;
-    constexpr double kStep = 1e-4;
-    for (int it = 0; it < kShootingSteps; ++it) {
-      const auto r = miss(y, alpha);
-      if (!r) break;
-      Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
-      const auto ra = miss(y, alpha + kStep);
-      if (!ra) break;
-      jac.col(1) = (*ra - *r) / kStep;
-      if (free_end) {
-        const auto ry = miss(y + kStep, alpha);
-        if (!ry) break;
-        jac.col(0) = (*ry - *r) / kStep;
-      }
-      // least-squares step, damped a little, both unknowns limited in size
-      Eigen::Matrix2d a = jac.transpose() * jac;
-      a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
-      const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
-      if (!step.allFinite()) break;
-      const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), lo, hi);
-      const auto rn = miss(ny, na);
-      if (!rn || rn->norm() >= r->norm()) break;
-      y = ny;
-      alpha = na;
-    }
-    const auto seg = build(y, alpha);
+    const double k1 = free_end ? kappa[(i + 1) % joints] : 0.0;
+    const auto seg = shootSegment(turning[i], start, theta, k0, free_end ? std::copysign(std::abs(k1), end_sign) : 0.0,
+                                  zero_end ? -1.0 : kStage7StartAlpha, lo, hi, target);
     if (!seg) return {};
     chain.push_back(*seg);
     start = chain.back().end();
@@ -145,6 +106,53 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
 }
 
 }  // namespace
+
+std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double theta0, double kappa_start,
+                                      double kappa_end, double alpha, double min_alpha, double max_alpha,
+                                      const Vec2& target) {
+  // unknowns: y = log|kappa_end| (when not an inflection), alpha
+  const bool free_end = kappa_end != 0.0;
+  const double end_sign = kappa_end < 0.0 ? -1.0 : 1.0;
+  double y = free_end ? std::log(std::abs(kappa_end)) : 0.0;
+  auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
+    try {
+      return LaSegment::withTurning(aa, turning, start, theta0, kappa_start, free_end ? end_sign * std::exp(yy) : 0.0);
+    } catch (const std::invalid_argument&) {
+      return std::nullopt;
+    }
+  };
+  auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
+    const auto seg = build(yy, aa);
+    if (!seg) return std::nullopt;
+    return Vec2(seg->end() - target);
+  };
+  constexpr int kShootingSteps = 8;
+  constexpr double kStep = 1e-4;
+  for (int it = 0; it < kShootingSteps; ++it) {
+    const auto r = miss(y, alpha);
+    if (!r) break;
+    Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
+    const auto ra = miss(y, alpha + kStep);
+    if (!ra) break;
+    jac.col(1) = (*ra - *r) / kStep;
+    if (free_end) {
+      const auto ry = miss(y + kStep, alpha);
+      if (!ry) break;
+      jac.col(0) = (*ry - *r) / kStep;
+    }
+    // least-squares step, damped a little, both unknowns limited in size
+    Eigen::Matrix2d a = jac.transpose() * jac;
+    a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
+    const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
+    if (!step.allFinite()) break;
+    const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), min_alpha, max_alpha);
+    const auto rn = miss(ny, na);
+    if (!rn || rn->norm() >= r->norm()) break;
+    y = ny;
+    alpha = na;
+  }
+  return build(y, alpha);
+}
 
 // shotChain; with `halve`, where a shot segment is far longer or shorter than the
 // spline between its splits, it has set off away from the points (its start curvature,

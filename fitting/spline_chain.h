@@ -4,6 +4,7 @@
 // spline in intrinsic form, segment by segment, each shot from the previous one's end
 // towards the next split point. G2 by construction.
 
+#include <optional>
 #include <vector>
 
 #include "core/bspline.h"
@@ -19,5 +20,14 @@ namespace la {
 /// halved and the chain shot again. Empty if some piece has no LA segment.
 std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
                                        double min_alpha, double max_alpha, bool halve);
+
+/// One LA segment from `start` with tangent `theta0` and curvature `kappa_start`,
+/// turning by `turning`, whose end curvature (unless `kappa_end` is 0: an inflection end
+/// stays) and alpha (within [min_alpha, max_alpha]) bring its end closest to `target`:
+/// Gauss-Newton from `kappa_end` and `alpha`, a few steps, each kept only if it gets
+/// closer. Nullopt if no LA segment has the start values.
+std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double theta0, double kappa_start,
+                                      double kappa_end, double alpha, double min_alpha, double max_alpha,
+                                      const Vec2& target);
 
 }  // namespace la

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -1297,6 +1298,104 @@ TEST(PipelineTimeBudget, ReturnsTheBestG2ChainSoFarWithTrueFigures) {
   EXPECT_EQ(r.quality.max_dev, again.max_dev);
   EXPECT_EQ(r.quality.segments, static_cast<int>(r.curve.pieces.size()));
   EXPECT_FALSE(fit(wave).out_of_time);
+}
+
+}  // namespace
+}  // namespace la
+
+namespace la {
+namespace {
+
+// Points along a curve at equal arc-length steps, with Gaussian noise.
+std::vector<Vec2> sampled(const std::function<Vec2(double)>& at, double length, int n, double noise, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, noise);
+  std::vector<Vec2> points;
+  for (int i = 0; i <= n; ++i) points.push_back(at(length * i / n) + (noise > 0.0 ? Vec2(g(rng), g(rng)) : Vec2::Zero()));
+  return points;
+}
+
+std::vector<Vec2> sampledSegment(const LaSegment& s, int n, double noise = 0.0, unsigned seed = 1) {
+  return sampled([&](double t) { return s.position(t); }, s.length(), n, noise, seed);
+}
+
+// The Archimedean spiral r = a theta from theta = 2 pi on, `turns` turns, at equal steps
+// of arc length (its arc length, a theta sqrt(1 + theta^2)/2 + a asinh(theta)/2, is
+// inverted by bisection).
+std::vector<Vec2> archimedeanSpiral(double turns, int n, double noise, unsigned seed) {
+  constexpr double a = 5.0;
+  auto arc = [](double t) { return 0.5 * a * (t * std::sqrt(1.0 + t * t) + std::asinh(t)); };
+  const double t0 = 2.0 * std::numbers::pi, t1 = t0 + 2.0 * std::numbers::pi * turns;
+  auto at = [&](double s) {
+    double lo = t0, hi = t1;
+    for (int k = 0; k < 60; ++k) (arc(0.5 * (lo + hi)) - arc(t0) < s ? lo : hi) = 0.5 * (lo + hi);
+    const double t = 0.5 * (lo + hi);
+    return Vec2(a * t * std::cos(t), a * t * std::sin(t));
+  };
+  return sampled(at, arc(t1) - arc(t0), n, noise, seed);
+}
+
+// A stroke sampled from one LA segment comes back as that one segment, with its alpha
+// (within 0.05): more than a half turn, more than a full turn, at several alphas.
+TEST(PipelineOneSegment, OneLaSegmentSampledIsThatSegment) {
+  const double pi = std::numbers::pi;
+  struct Case {
+    const char* name;
+    LaSegment truth;
+  };
+  const Case cases[] = {
+      {"clothoid, 1 turn", LaSegment::withTurning(-1.0, 2.0 * pi, {0, 0}, 0.0, 0.01, 0.1)},
+      {"logarithmic spiral, 1 turn", LaSegment::withTurning(1.0, 2.0 * pi, {0, 0}, 0.3, 0.01, 0.05)},
+      {"circle involute, 1 turn", LaSegment::withTurning(2.0, 2.0 * pi, {5, 5}, 1.0, 0.01, 0.06)},
+      {"alpha 0.5, 1.5 turns", LaSegment::withTurning(0.5, 3.0 * pi, {0, 0}, 0.0, 0.01, 0.06)},
+      {"clothoid, 2 turns, turning right", LaSegment::withTurning(-1.0, 4.0 * pi, {0, 0}, 0.0, -0.01, -0.1)},
+  };
+  for (const Case& c : cases) {
+    const FitResult r = fit(sampledSegment(c.truth, 600));
+    ASSERT_EQ(r.curve.pieces.size(), 1u) << c.name << "\n" << describeFit(r);
+    const LaSegment& s = r.curve.pieces[0].segment;
+    EXPECT_NEAR(s.alpha(), c.truth.alpha(), 0.05) << c.name;
+    EXPECT_NEAR(s.turning(), c.truth.turning(), 1e-3) << c.name;
+    EXPECT_LE(r.quality.max_dev, r.tolerance) << c.name;
+  }
+  // An arc of 115 degrees: one segment of constant curvature (any alpha draws it).
+  const LaSegment arc = LaSegment::arc(200.0, {0, 0}, 0.0, 2.0071 / 200.0);
+  const FitResult r = fit(sampledSegment(arc, 200));
+  ASSERT_EQ(r.curve.pieces.size(), 1u) << describeFit(r);
+  EXPECT_NEAR(r.curve.pieces[0].segment.kappaStart(), arc.kappaStart(), 1e-4 * arc.kappaStart());
+  EXPECT_NEAR(r.curve.pieces[0].segment.kappaEnd(), arc.kappaStart(), 1e-4 * arc.kappaStart());
+}
+
+// Spirals of 1 to 5 turns, logarithmic, clothoid and Archimedean (200 + 360 points a
+// turn), within the tolerance, G2, at most 2 segments a turn; the Archimedean and a
+// logarithmic one also with noise of a fifth of a unit. (With noise, clothoids of 2
+// turns and more still miss: see the stop note of issue 16.)
+TEST(PipelineOneSegment, SpiralsOfUpToFiveTurnsFitWithFewSegments) {
+  const double pi = std::numbers::pi;
+  struct Case {
+    std::string name;
+    std::vector<Vec2> points;
+    double turns;
+  };
+  std::vector<Case> cases;
+  for (double turns : {1.0, 2.0, 3.0, 5.0}) {
+    const int n = static_cast<int>(200 + 360 * turns);
+    const std::string t = std::to_string(static_cast<int>(turns)) + " turns";
+    cases.push_back({"logarithmic, " + t,
+                     sampledSegment(LaSegment::withTurning(1.0, 2 * pi * turns, {0, 0}, 0, 0.002, 0.002 * std::exp(0.35 * 2 * pi * turns)), n),
+                     turns});
+    cases.push_back({"clothoid, " + t, sampledSegment(LaSegment::withTurning(-1.0, 2 * pi * turns, {0, 0}, 0, 0.01, 0.1), n), turns});
+    cases.push_back({"Archimedean, " + t, archimedeanSpiral(turns, n, 0.0, 3), turns});
+    cases.push_back({"Archimedean, noisy, " + t, archimedeanSpiral(turns, n, 0.2, 3), turns});
+  }
+  cases.push_back({"logarithmic, noisy, 1 turn", sampledSegment(LaSegment::withTurning(1.0, 2 * pi, {0, 0}, 0, 0.002, 0.002 * std::exp(0.35 * 2 * pi)), 560, 0.2), 1.0});
+  for (const Case& c : cases) {
+    const FitResult r = fit(c.points);
+    EXPECT_LE(r.quality.max_dev, r.tolerance) << c.name << "\n" << describeFit(r);
+    EXPECT_LT(r.quality.g2_gap, 1e-6) << c.name;
+    EXPECT_LT(r.quality.g1_gap, 1e-9) << c.name;
+    EXPECT_LE(static_cast<double>(r.curve.pieces.size()), 2.0 * c.turns) << c.name << "\n" << describeFit(r);
+  }
 }
 
 }  // namespace
