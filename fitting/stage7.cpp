@@ -108,7 +108,8 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 
 
 // A part drawn as one LA curve (a clothoid, a logarithmic spiral or a circle involute
 // of any number of turns, an arc) is one segment, and no edit of a chain of several
-// finds it when that segment turns further than a merge may. So it is tried first, read
+// finds it when that segment turns further than a merge may (SelectionOptions::
+// max_turning). So where the part turns further, it is tried first, read
 // off the points (a smoothing spline of a spiral of several turns may loop): its total
 // turning (the chords of neighbours `span` apart followed along it, `span` long enough
 // that noise cannot turn a chord by much), its length, the mean curvature over a few
@@ -122,6 +123,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // (five unknowns: a step costs little, and a spiral of several turns starts far off)
   constexpr int kOneSegmentIterations = 40;
   constexpr std::size_t kOneSegmentStarts = 3;
+  constexpr std::size_t kCurvatureWindows = 16;  // for the test of monotone curvature
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
   const double step = medianStep(p);
@@ -138,8 +140,11 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   double chords = 0.0;
   for (std::size_t i = 0; i + span < m; ++i) chords += (p[i + span] - p[i]).norm() / static_cast<double>(span);
   const double length = chords * static_cast<double>(m - 1) / static_cast<double>(m - span);
-  const double turning = angle.back() - angle.front();
-  if (!(length > 0.0) || turning == 0.0) return std::nullopt;
+  // (the first chord's direction is half a chord in, the last's half a chord short)
+  const double turning = (angle.back() - angle.front()) * static_cast<double>(m - 1) / static_cast<double>(m - 1 - span);
+  // (the selection's merges make a segment turning up to max_turning: only a part turning
+  // further needs this)
+  if (!(length > 0.0) || !(std::abs(turning) > so.max_turning)) return std::nullopt;
   const double sign = turning < 0.0 ? -1.0 : 1.0;
   // (a turn back from the furthest direction so far by more than the noise can turn a
   // chord, sqrt(2) noise / chord per chord, at about 8 sigmas: an inflection inside; a
@@ -149,6 +154,26 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   for (double a : angle) {
     if ((a - low) * sign < -slack) return std::nullopt;
     if ((a - low) * sign > 0.0) low = a;
+  }
+  // (an LA segment's curvature is monotone: the mean curvature over successive windows
+  // of the chords may not rise and fall again, or fall and rise, by more than a fifth of
+  // its largest value or than the noise turns a window by)
+  const std::size_t window = std::max<std::size_t>(3, angle.size() / kCurvatureWindows);
+  std::vector<double> kappa;
+  for (std::size_t i = 0; i + window < angle.size(); i += window) kappa.push_back(std::abs(angle[i + window] - angle[i]));
+  const double largest = *std::max_element(kappa.begin(), kappa.end());
+  const double reversal = std::max(0.2 * largest, 2.0 * slack);
+  double top = kappa.front(), bottom = kappa.front();
+  int trend = 0;  // +1 rising, -1 falling, once a change beyond `reversal` shows it
+  for (double k : kappa) {
+    top = std::max(top, k), bottom = std::min(bottom, k);
+    if (trend >= 0 && top - k > reversal) {
+      if (trend > 0) return std::nullopt;
+      trend = -1, bottom = k;
+    } else if (trend <= 0 && k - bottom > reversal) {
+      if (trend < 0) return std::nullopt;
+      trend = 1, top = k;
+    }
   }
   // (the mean curvature over the `end` chords at each end and over the next `end`,
   // extrapolated to the end itself; at least a tenth of the mean, of the turning's sign)
