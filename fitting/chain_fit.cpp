@@ -1046,12 +1046,11 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
       const double log_turning = std::log(std::abs(initial[i].turning()));
       layout.turning.push_back(add(log_turning, -INFINITY, std::max(log_turning, std::log(kMaxSegmentTurning)), kMaxLogTurningStep));
       const double a = std::isfinite(initial[i].alpha()) ? initial[i].alpha() : -1.0;  // a circle: any alpha
-      // (the bounds and the cap are widened to a start's alpha beyond them: clamping it
-      // would change the chain before the fit, as a raised curvature floor would, see
-      // above; stage 4 gives inflection pieces alphas below -3)
-      const double lo = std::min(options.min_alpha, a);
-      const double cap = std::max(kInflectionAlphaCap, std::min(a, 0.0));
-      const double hi = (zero0 || zero1) ? std::min(cap, options.max_alpha) : std::max(options.max_alpha, a);
+      // (a start's alpha beyond the bounds is moved inside them, which changes the chain
+      // before the fit: stage 4 gives inflection pieces alphas below -3, and the range
+      // is the user's promise)
+      const double lo = options.min_alpha;
+      const double hi = (zero0 || zero1) ? std::min(kInflectionAlphaCap, options.max_alpha) : options.max_alpha;
       layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
     }
     turning += initial[i].turning();

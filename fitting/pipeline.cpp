@@ -89,9 +89,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     auto consider = [&](PartFit other) {
       polish(other);
       // (G2 first, then the cap on extrema, then the deviation)
-      const bool other_capped = !overCap(other.segments, part.closed, context), capped = !overCap(fit.segments, part.closed, context);
+      const bool other_kept = !overCap(other.segments, part.closed, context);
+      const bool kept = !overCap(fit.segments, part.closed, context);
       const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable()
-                          : other_capped != capped             ? other_capped
+                          : other_kept != kept                 ? other_kept
                                                                : measure(other) < measure(fit);
       if (better) fit = std::move(other);
     };

@@ -169,16 +169,22 @@ TEST(ChainFit, KeepsAJointFlatterThanItsFloor) {
   EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 120.0);
 }
 
-// The same for a segment running into an inflection with alpha -0.05, steeper than the
-// cap the fit keeps zero-end segments under (kInflectionAlphaCap): started from the
-// truth, it must stay on the points, not be clamped to the cap first.
-TEST(ChainFit, KeepsAZeroEndLawSteeperThanItsCap) {
+// A start whose alphas lie outside the range (a segment running into an inflection with
+// alpha -0.05, steeper than the cap the fit keeps zero-end segments under,
+// kInflectionAlphaCap; another at 4, above max_alpha): the fit moves them inside, the
+// range being a promise, and still follows the points as well as that allows.
+TEST(ChainFit, KeepsEveryAlphaInItsRangeFromAStartOutsideIt) {
   ASSERT_GT(-0.05, kInflectionAlphaCap);
-  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.3, 0.02, {{1.0, 60.0, 0.01}, {-0.05, 80.0, 0.0}});
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.3, 0.02, {{4.0, 60.0, 0.01}, {-0.05, 80.0, 0.0}});
   const std::vector<Vec2> points = sampleChain(truth, 150, 0.0, 6);
   const ChainFitResult r = fitChain(truth, points, {});
   ASSERT_EQ(r.segments.size(), 2u) << r.report.message;
-  EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 140.0);
+  const ChainFitOptions range;
+  EXPECT_LE(r.segments[0].alpha(), range.max_alpha);
+  EXPECT_LE(r.segments[1].alpha(), kInflectionAlphaCap);
+  EXPECT_GE(r.segments[1].alpha(), range.min_alpha);
+  expectG2(r.segments, 1e-9);
+  EXPECT_LT(maxDistance(r.segments, points), 0.01 * 140.0);
 }
 
 // A chain whose nearly straight last segment misses its corner sideways, snapped by the
