@@ -1017,15 +1017,17 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   double floor = kKappaFloor * kappa_max;
   for (double k : kappa)
     if (k != 0.0) floor = std::min(floor, std::abs(k));
+  // (the largest curvature allowed: a start's tighter joint is eased to it first)
+  const double ceiling = options.max_curvature > 0.0 ? std::max(options.max_curvature * scale, floor) : INFINITY;
   std::vector<int> kappa_unknown;
   for (double k : kappa) {
     if (k == 0.0) {
       kappa_unknown.push_back(-1);
       continue;
     }
-    const double value = std::copysign(std::max(std::abs(k), floor), k);
-    kappa_unknown.push_back(k > 0.0 ? add(value, floor, INFINITY, kMaxRelativeKappaStep * std::abs(value))
-                                    : add(value, -INFINITY, -floor, kMaxRelativeKappaStep * std::abs(value)));
+    const double value = std::copysign(std::clamp(std::abs(k), floor, ceiling), k);
+    kappa_unknown.push_back(k > 0.0 ? add(value, floor, ceiling, kMaxRelativeKappaStep * std::abs(value))
+                                    : add(value, -ceiling, -floor, kMaxRelativeKappaStep * std::abs(value)));
   }
   double turning = 0.0;  // summed: the segments' own theta0 may be wrapped
   layout.corner_turn.assign(n + 1, -1);

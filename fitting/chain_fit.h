@@ -108,6 +108,10 @@ struct ChainFitOptions {
   /// can tell (a sharp vertex of noisy points under the corner angle) spreads over at
   /// least this length unless the points insist. The model selection sets its tolerance.
   double min_length = 0.0;
+  /// The largest |curvature| at any joint (world units; 0: none), so at any point (an LA
+  /// segment's curvature is monotone): no bend tighter than 1 / max_curvature. A start
+  /// with a tighter joint is eased to it before the fit.
+  double max_curvature = 0.0;
   double alpha_prior = 0.5, alpha_spread = 2.0;
   /// Per point, the weight of its residual (empty: all 1). Raising the weights of the
   /// points furthest off moves the least-squares fit towards the smallest largest

@@ -40,6 +40,8 @@ struct FitContext {
   /// When the fit's time budget (FitOptions::time_budget_ms) runs out: stage 7 stops
   /// editing and keeps the best G2 chain it has. Clock::time_point::max(): no budget.
   Clock::time_point deadline = Clock::time_point::max();
+  /// Stage 7 bends no tighter than the tolerance (ChainFitOptions::max_curvature).
+  bool bound_radius = true;
 
   bool outOfTime() const { return deadline != Clock::time_point::max() && Clock::now() >= deadline; }
 

@@ -13,6 +13,11 @@
 namespace la {
 namespace {
 
+// Corners added where a bend is tighter than the tolerance allows (see fitStroke), at
+// most this many per stroke; a joint counts as at the limit above this fraction of it.
+constexpr std::size_t kMaxAddedCorners = 8;
+constexpr double kAtTheCurvatureLimit = 0.99;
+
 // A straight stroke: its lines, a corner of pi where it turns back.
 void fitStraight(FitResult& r) {
   const std::vector<Vec2>& p = r.cleaned.points;
@@ -33,10 +38,9 @@ void fitStraight(FitResult& r) {
   r.timings.quality_ms = msSince(tq);
 }
 
-}  // namespace
-
-FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
-  const auto start = Clock::now();
+// The whole pipeline, stage 7 bending no tighter than the tolerance where
+// `bound_radius`; the time budget counts from `start`.
+FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_radius, Clock::time_point start) {
   FitResult r;
   r.cleaned = cleanStroke(stroke, options.cleanup);
   r.timings.cleanup_ms = msSince(start);
@@ -52,6 +56,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
+  context.bound_radius = bound_radius;
   if (options.time_budget_ms > 0.0)
     context.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
 
@@ -65,6 +70,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   r.curve.closed = r.cleaned.closed;
   const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
   auto fitOne = [&](const Part& part) {
+    if (polishing) {
+      const auto tp = Clock::now();
+      std::optional<PartFit> one = oneSegmentPart(part, context);
+      r.timings.polish_ms += msSince(tp);
+      if (one) return *one;
+    }
     PartFit fit = fitPart(part, context, polishing);
     if (!polishing) {
       // (the paper's chain over the cap on extrema: the cap's merges, by stage 7's fit)
@@ -152,6 +163,47 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     fits.erase(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
   }
+  // Stage 7 bends no tighter than the tolerance (DESIGN.md section 6): a bend the points
+  // need tighter is a corner. Where an open part still misses the tolerance and its chain
+  // is at that limit at a joint, the part is cut at its point nearest that joint and the
+  // two halves fitted, kept where both are within the tolerance.
+  for (std::size_t k = 0, added = 0; polishing && k < parts.size() && added < kMaxAddedCorners && !context.outOfTime();) {
+    const Part& part = parts[k];
+    const std::vector<LaSegment>& segs = fits[k].segments;
+    std::size_t tightest = 0;  // (an interior joint)
+    for (std::size_t j = 1; j < segs.size(); ++j)
+      if (tightest == 0 || std::abs(segs[j].kappaStart()) > std::abs(segs[tightest].kappaStart())) tightest = j;
+    if (part.closed || !(fits[k].max_dev > r.tolerance) || tightest == 0 ||
+        !(std::abs(segs[tightest].kappaStart()) * r.tolerance > kAtTheCurvatureLimit)) {
+      ++k;
+      continue;
+    }
+    const Vec2 joint = segs[tightest].start();
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < part.points.size(); ++i)
+      if ((part.points[i] - joint).norm() < (part.points[at] - joint).norm()) at = i;
+    if (at < 2 || at + 3 > part.points.size()) {
+      ++k;
+      continue;
+    }
+    Part before{{part.points.begin(), part.points.begin() + static_cast<std::ptrdiff_t>(at) + 1}, false, part.starts_at_corner, true};
+    Part after{{part.points.begin() + static_cast<std::ptrdiff_t>(at), part.points.end()}, false, true, part.ends_at_corner};
+    PartFit first = fitOne(before), second = fitOne(after);
+    if (!first.g2.usable() || !second.g2.usable() || !(std::max(first.max_dev, second.max_dev) <= r.tolerance)) {
+      ++k;
+      continue;
+    }
+    const auto corner = static_cast<std::size_t>(
+        std::min_element(r.cleaned.points.begin(), r.cleaned.points.end(),
+                         [&](const Vec2& a, const Vec2& b) { return (a - part.points[at]).norm() < (b - part.points[at]).norm(); }) -
+        r.cleaned.points.begin());
+    r.cleaned.corners.insert(std::upper_bound(r.cleaned.corners.begin(), r.cleaned.corners.end(), corner), corner);
+    parts[k] = std::move(before);
+    fits[k] = std::move(first);
+    parts.insert(parts.begin() + static_cast<std::ptrdiff_t>(k) + 1, std::move(after));
+    fits.insert(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1, std::move(second));
+    ++added;
+  }
   joinAtCorners(fits, parts, context.g2());
   if (polishing && !context.outOfTime()) {
     const auto tp = Clock::now();
@@ -182,6 +234,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     if (std::isnan(fits[k].stray)) fits[k].stray = strayOf(fits[k].segments, parts[k], diag);
     stray = std::max(stray, fits[k].stray);
   }
+  r.stray = stray;
   if (stray > kStrayWarning * r.tolerance)
     r.warnings.push_back("the curve strays up to " + std::to_string(stray) + " from the stroke, where no point is");
   const int cap = options.segmentation.max_extrema, most = r.quality.max_extrema_per_part;
@@ -196,6 +249,32 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   if (r.out_of_time)
     r.warnings.push_back("the time budget of " + std::to_string(options.time_budget_ms) +
                          " ms ran out: the best G2 chain found by then");
+  r.timings.total_ms = msSince(start);
+  return r;
+}
+
+}  // namespace
+
+FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
+  const auto start = Clock::now();
+  FitResult r = fitOnce(stroke, options, true, start);
+  // A bend the points need tighter than the tolerance is a corner, which the clean-up
+  // and the corners stage 7 adds do not always find: where the bound on the radius
+  // costs the tolerance, the fit without it, if that keeps the tolerance.
+  const bool polishing = options.polish && options.g2 != G2Method::kOff;
+  // (missed: a point outside the tolerance, or the curve further than twice it, and a
+  // sample step, from the stroke's polyline: a loop, or a corner run past its tip)
+  auto misses = [](const FitResult& f) {
+    const double allowed = kStrayWarning * f.tolerance + medianStep(f.cleaned.points);
+    return f.quality.max_dev > f.tolerance || strayFromPoints(f.curve, f.cleaned.points, f.quality.diagonal) > allowed;
+  };
+  if (polishing && misses(r) && !r.cleaned.straight) {
+    FitResult free = fitOnce(stroke, options, false, start);
+    if (!misses(free)) {
+      free.timings.total_ms = msSince(start);
+      return free;
+    }
+  }
   r.timings.total_ms = msSince(start);
   return r;
 }

@@ -103,6 +103,9 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 
   co.noise = context.noise.sigma;
   so.max_extrema = options.segmentation.max_extrema;
   so.deadline = context.deadline;
+  // (DESIGN.md section 6: a bend tighter than the tolerance is a corner; a hair inside,
+  // so that rounding leaves no radius under it)
+  if (context.bound_radius) co.max_curvature = (1.0 - 1e-9) / context.tolerance;
   return so;
 }
 
@@ -230,6 +233,29 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
 
 }  // namespace
 
+std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context) {
+  // (a whole open stroke without corners: a side between corners is fitted with the
+  // others across them, where one segment pinned at both corners may stray)
+  if (part.closed || part.starts_at_corner || part.ends_at_corner) return std::nullopt;
+  const std::optional<ChainFitResult> one = oneSegment(part, stage7Selection(context), context.noise.sigma);
+  if (!one) return std::nullopt;
+  PartFit fit;
+  fit.segments = one->segments;
+  PieceReport report;
+  const LaSegment& s = fit.segments.front();
+  report.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+                : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                      : PieceKind::kThreePoint;
+  report.alpha = s.alpha();
+  report.lcg_alpha = report.lcg_r2 = NAN;  // (no spline: stages 2-6 did not run)
+  if (!one->alpha_standard_error.empty()) report.alpha_standard_error = one->alpha_standard_error.front();
+  fit.reports = {report};
+  fit.max_dev = one->max_distance;
+  fit.smoothing = {SolveStatus::kConverged, 0, 0.0, "not needed: one LA segment"};
+  fit.g2 = {SolveStatus::kConverged, one->report.iterations, 0.0, "one LA segment (stage 7)"};
+  return fit;
+}
+
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context) {
   const int cap = context.options.segmentation.max_extrema;
   if (cap < 0) return false;
@@ -262,20 +288,10 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve);
     feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
   };
-  SelectionResult selected;
-  // (a whole open stroke without corners: a side between corners is fitted with the
-  // others across them, where one segment pinned at both corners may stray)
-  const bool whole_open = !part.closed && !part.starts_at_corner && !part.ends_at_corner;
-  const std::optional<ChainFitResult> one =
-      whole_open && choose_segments ? oneSegment(part, so, context.noise.sigma) : std::nullopt;
-  if (one) {
-    selected.fit = *one;
-  } else {
-    if (from_spline) startFromSpline(false);
-    if (start.empty()) return;
-    selected = selectChain(start, part.points, feet, so);
-  }
-  if (!one && from_spline && selected.fit.max_distance > kAstrayFit * tol) {
+  if (from_spline) startFromSpline(false);
+  if (start.empty()) return;
+  SelectionResult selected = selectChain(start, part.points, feet, so);
+  if (from_spline && selected.fit.max_distance > kAstrayFit * tol) {
     // Far outside the tolerance from the spline's chain: again from its spans halved
     // where it set off astray, the closer kept. (Within twice the tolerance, the fit
     // across corners usually closes the gap, and the halved start only adds segments.)
@@ -308,7 +324,8 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }
-  fit.max_dev = polished.max_distance;
+  // (a chain closed or snapped onto its corner may have moved: measured again)
+  fit.max_dev = co.closed || co.fix_end ? maxDeviationOf(segments, part.points, diag) : polished.max_distance;
   fit.warnings.clear();
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
@@ -480,8 +497,15 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     const double after_held = split(held_fit, held);
     if (after_held < after) after = after_held, out = std::move(held);
   }
-  // (within the tolerance, the least-squares corners are the better estimate)
+  // (within the tolerance, the least-squares corners are the better estimate; a result
+  // that leaves points outside it where the parts' own fits had none is not)
+  auto deviation = [](const std::vector<PartFit>& f) {
+    double worst = 0.0;
+    for (const PartFit& p : f) worst = std::max(worst, p.max_dev);
+    return worst;
+  };
   if (!(after < before) && !(after <= tol)) return false;
+  if (deviation(fits) <= tol && !(deviation(out) <= tol)) return false;
   fits = std::move(out);
   return true;
 }

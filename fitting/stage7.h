@@ -5,6 +5,7 @@
 // measured (deviation, stray) and joined at their corners.
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "fitting/fit_context.h"
@@ -24,6 +25,11 @@ inline constexpr double kStrayWarning = 2.0;
 /// known. Without `choose_segments`, only the cap's merges edit the chain (the paper's
 /// pipeline over the cap).
 void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true);
+
+/// A whole open stroke without corners drawn as one LA curve, fitted as that one segment
+/// (stage7.cpp, oneSegment, says how); nullopt where it is not one within the tolerance.
+/// No spline: stages 2-6 are not needed.
+std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context);
 
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);

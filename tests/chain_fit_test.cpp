@@ -485,3 +485,29 @@ TEST(ChainFit, RefusesMisplacedCorners) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// ChainFitOptions::max_curvature bounds every joint, and so every point (an LA segment's
+// curvature is monotone): points on a tight bend (radius 5) fitted with no bend tighter
+// than radius 10 come out no tighter, from a start that is; without the bound the fit
+// follows the bend.
+TEST(ChainFit, BendsNoTighterThanMaxCurvature) {
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.0, 0.01, {{0.5, 40.0, 0.2}, {0.5, 40.0, 0.01}});
+  const std::vector<Vec2> points = sampleChain(truth, 120, 0.0, 6);
+  ChainFitOptions bounded;
+  bounded.max_curvature = 0.1;
+  const ChainFitResult r = fitChain(truth, points, {}, bounded);
+  ASSERT_EQ(r.segments.size(), 2u) << r.report.message;
+  for (const LaSegment& s : r.segments) {
+    EXPECT_LE(std::abs(s.kappaStart()), 0.1 * (1.0 + 1e-9));
+    EXPECT_LE(std::abs(s.kappaEnd()), 0.1 * (1.0 + 1e-9));
+  }
+  expectG2(r.segments, 1e-9);
+  const ChainFitResult free = fitChain(truth, points, {});
+  EXPECT_NEAR(std::abs(free.segments[0].kappaEnd()), 0.2, 0.01);
+}
+
+}  // namespace
+}  // namespace la
