@@ -13,11 +13,6 @@
 namespace la {
 namespace {
 
-// Corners added where a bend is tighter than the tolerance allows (see fitStroke), at
-// most this many per stroke; a joint counts as at the limit above this fraction of it.
-constexpr std::size_t kMaxAddedCorners = 8;
-constexpr double kAtTheCurvatureLimit = 0.99;
-
 // A straight stroke: its lines, a corner of pi where it turns back.
 void fitStraight(FitResult& r) {
   const std::vector<Vec2>& p = r.cleaned.points;
@@ -162,47 +157,6 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
     parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     fits.erase(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1);
     r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
-  }
-  // Stage 7 bends no tighter than the tolerance (DESIGN.md section 6): a bend the points
-  // need tighter is a corner. Where an open part still misses the tolerance and its chain
-  // is at that limit at a joint, the part is cut at its point nearest that joint and the
-  // two halves fitted, kept where both are within the tolerance.
-  for (std::size_t k = 0, added = 0; polishing && k < parts.size() && added < kMaxAddedCorners && !context.outOfTime();) {
-    const Part& part = parts[k];
-    const std::vector<LaSegment>& segs = fits[k].segments;
-    std::size_t tightest = 0;  // (an interior joint)
-    for (std::size_t j = 1; j < segs.size(); ++j)
-      if (tightest == 0 || std::abs(segs[j].kappaStart()) > std::abs(segs[tightest].kappaStart())) tightest = j;
-    if (part.closed || !(fits[k].max_dev > r.tolerance) || tightest == 0 ||
-        !(std::abs(segs[tightest].kappaStart()) * r.tolerance > kAtTheCurvatureLimit)) {
-      ++k;
-      continue;
-    }
-    const Vec2 joint = segs[tightest].start();
-    std::size_t at = 0;
-    for (std::size_t i = 0; i < part.points.size(); ++i)
-      if ((part.points[i] - joint).norm() < (part.points[at] - joint).norm()) at = i;
-    if (at < 2 || at + 3 > part.points.size()) {
-      ++k;
-      continue;
-    }
-    Part before{{part.points.begin(), part.points.begin() + static_cast<std::ptrdiff_t>(at) + 1}, false, part.starts_at_corner, true};
-    Part after{{part.points.begin() + static_cast<std::ptrdiff_t>(at), part.points.end()}, false, true, part.ends_at_corner};
-    PartFit first = fitOne(before), second = fitOne(after);
-    if (!first.g2.usable() || !second.g2.usable() || !(std::max(first.max_dev, second.max_dev) <= r.tolerance)) {
-      ++k;
-      continue;
-    }
-    const auto corner = static_cast<std::size_t>(
-        std::min_element(r.cleaned.points.begin(), r.cleaned.points.end(),
-                         [&](const Vec2& a, const Vec2& b) { return (a - part.points[at]).norm() < (b - part.points[at]).norm(); }) -
-        r.cleaned.points.begin());
-    r.cleaned.corners.insert(std::upper_bound(r.cleaned.corners.begin(), r.cleaned.corners.end(), corner), corner);
-    parts[k] = std::move(before);
-    fits[k] = std::move(first);
-    parts.insert(parts.begin() + static_cast<std::ptrdiff_t>(k) + 1, std::move(after));
-    fits.insert(fits.begin() + static_cast<std::ptrdiff_t>(k) + 1, std::move(second));
-    ++added;
   }
   joinAtCorners(fits, parts, context.g2());
   if (polishing && !context.outOfTime()) {
