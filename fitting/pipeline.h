@@ -3,16 +3,39 @@
 // in, a fair curve of LA segments with continuous curvature out, with every
 // intermediate stage, the quality figures of DESIGN.md section 6 and per-stage timings.
 //
-//   1 cleanStroke      duplicates, hooks, corners, closed?           fitting/stroke.h
-//   2 smoothWithBSpline cubic B-spline within the tolerance           fitting/spline_smoothing.h
-//   3 segmentSpline    split at inflections and curvature extrema    fitting/segmentation.h
-//   4 alpha per piece  LCG regression (inflection pieces solve alpha)  core/lcg.h
-//   5 LA segment per piece from its control triangle                 fitting/chain.h
-//   6 makeG2           rotate joint tangents until curvature is continuous  fitting/g2_joints.h
-//   7 selectChain      the whole G2 chain fitted to the points by least  fitting/model_selection.h,
-//                      squares, segments added, collapsed or merged as   fitting/chain_fit.h
-//                      the points need (ours; on by default)
-//   8 quality figures  fitting/quality.h
+// What it looks for (DESIGN.md sections 3 and 6), in this order:
+//   - G2 at every joint but the corners;
+//   - the user's limits: at most segmentation.max_extrema curvature extrema per smooth
+//     part (a hard cap: where the tolerance cannot be kept under it, the cap wins and the
+//     figures report the deviation), every alpha in [min_alpha, max_alpha];
+//   - every point within the tolerance, no bend tighter than it (tighter is a corner);
+//   - the fewest curvature extrema, then the fewest segments, then the least squares.
+// The last line is approached, not proven: stage 7's edits keep a merge or collapse only
+// where the points do not object (an F-test), so a curve may keep an extremum the
+// tolerance alone would let go.
+//
+//   1 cleanStroke       duplicates, hooks, corners, closed, straight?   fitting/stroke.h
+//     noiseOf           the tolerance's floor                           fitting/stroke_noise.h
+//     splitAtCorners    corner-to-corner parts                          fitting/parts.h
+//   2-6 fitPart         per part, the paper's stages:                   fitting/paper_stages.h
+//       2 smoothWithBSpline  cubic B-spline within the tolerance        fitting/spline_smoothing.h
+//       3 segmentSpline      split at inflections, curvature extrema    fitting/segmentation.h
+//       4 alpha per piece    LCG regression                             core/lcg.h
+//       5 LA segment per piece from its control triangle                fitting/chain.h
+//       6 makeG2             rotate joint tangents to G2                fitting/g2_joints.h
+//   7 polishPart        the part's G2 chain fitted to its points by     fitting/stage7.h,
+//                       least squares, its segments chosen (ours; on    fitting/model_selection.h,
+//                       by default); fitAcrossCorners: all parts as     fitting/chain_fit.h,
+//                       one chain with free corners                     fitting/spline_chain.h
+//   8 measureQuality    the figures                                     fitting/quality.h
+// The steps shared by one fit (tolerance, noise, timings, time budget): fitting/
+// fit_context.h. The user's edits of a fitted curve: fitting/user_edits.h.
+//
+// Special shapes. Points all on one line are a line (or lines where the stroke turns
+// back). A whole open stroke without corners that turns further than a merge may is
+// first tried as one LA segment (a clothoid, a spiral of several turns), stages 2-6
+// skipped where it fits.
+//
 // A stroke with deliberate corners is fitted piecewise between them; the segment after
 // a corner carries corner = true. With stage 7, a corner beside a part that misses the
 // tolerance goes where the two parts fitted as one smooth part keep it (a tight bend
@@ -28,7 +51,9 @@
 // no G2 chain the fit starts from the spline itself; where its result still misses the
 // tolerance or G2, stages 2-6 as the paper has them (cutting what strays) give a second
 // start, and for pixel-quantized strokes stages 2-6 on the points with their stairs
-// smoothed a third; the best result stays (G2 first, then the deviation).
+// smoothed a third; the best result stays (G2 first, then the cap, then the deviation).
+// Stage 7 bends no tighter than the tolerance; where that costs the tolerance (a tight
+// bend the clean-up did not take for a corner), the whole fit runs again without it.
 
 #include <optional>
 #include <string>

@@ -126,7 +126,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // (five unknowns: a step costs little, and a spiral of several turns starts far off)
   constexpr int kOneSegmentIterations = 40;
   constexpr std::size_t kOneSegmentStarts = 3;
-  constexpr std::size_t kCurvatureWindows = 16;  // for the test of monotone curvature
+  constexpr std::size_t kCurvatureWindows = 8;  // for the test of monotone curvature
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
   const double step = medianStep(p);
@@ -158,14 +158,14 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
     if ((a - low) * sign < -slack) return std::nullopt;
     if ((a - low) * sign > 0.0) low = a;
   }
-  // (an LA segment's curvature is monotone: the mean curvature over successive windows
-  // of the chords may not rise and fall again, or fall and rise, by more than a fifth of
-  // its largest value or than the noise turns a window by)
+  // (an LA segment's curvature is monotone: the turning of successive windows of the
+  // chords may not rise and fall again, or fall and rise, by more than a quarter of the
+  // largest or four times what noise makes of a window's turning, 2 noise / chord)
   const std::size_t window = std::max<std::size_t>(3, angle.size() / kCurvatureWindows);
   std::vector<double> kappa;
   for (std::size_t i = 0; i + window < angle.size(); i += window) kappa.push_back(std::abs(angle[i + window] - angle[i]));
   const double largest = *std::max_element(kappa.begin(), kappa.end());
-  const double reversal = std::max(0.2 * largest, 2.0 * slack);
+  const double reversal = std::max(0.25 * largest, 8.0 * noise / (span * step));
   double top = kappa.front(), bottom = kappa.front();
   int trend = 0;  // +1 rising, -1 falling, once a change beyond `reversal` shows it
   for (double k : kappa) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <numbers>
 
 #include "fitting/chain.h"
 #include "fitting/fit_context.h"
@@ -53,14 +54,29 @@ std::optional<FitResult> resolvePart(const FitResult& fit, std::size_t piece, co
 
 }  // namespace
 
+std::optional<Vec2> controlApex(const LaSegment& segment) {
+  if (segment.isStraight() || !(std::abs(segment.turning()) < std::numbers::pi)) return std::nullopt;
+  const Vec2 a = segment.start(), b = segment.end(), u = segment.tangent(0.0), v = segment.tangent(segment.length());
+  const double det = cross(u, v);
+  if (det == 0.0) return std::nullopt;
+  // a + s u = b - t v, both s and t positive
+  const double s = cross(b - a, v) / det, t = cross(u, b - a) / det;
+  if (!(s > 0.0 && t > 0.0)) return std::nullopt;
+  return Vec2(a + s * u);
+}
+
+std::string whyAlphaIsFixed(const FitResult& fit, std::size_t piece) {
+  if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size()) return "no such segment";
+  if (fit.pieces[piece].kind != PieceKind::kThreePoint || std::isinf(fit.curve.pieces[piece].segment.alpha()))
+    return "this segment's alpha is fixed (an inflection end or a straight piece)";
+  if (!controlApex(fit.curve.pieces[piece].segment)) return "this segment turns by pi or more: it has no control triangle";
+  return "";
+}
+
 std::optional<FitResult> withSegmentAlpha(const FitResult& fit, std::size_t piece, double alpha,
                                           const FitOptions& options, std::string* why) {
-  if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size()) {
-    if (why) *why = "no such segment";
-    return std::nullopt;
-  }
-  if (fit.pieces[piece].kind != PieceKind::kThreePoint || std::isinf(fit.curve.pieces[piece].segment.alpha())) {
-    if (why) *why = "this segment's alpha is fixed (an inflection end or a straight piece)";
+  if (std::string fixed = whyAlphaIsFixed(fit, piece); !fixed.empty()) {
+    if (why) *why = fixed;
     return std::nullopt;
   }
   return resolvePart(fit, piece, options, [&](Chain& c, std::size_t i) {
@@ -100,6 +116,10 @@ std::optional<FitResult> withApexMoved(const FitResult& fit, std::size_t piece, 
                                        const FitOptions& options, std::string* why) {
   if (piece >= fit.pieces.size() || piece >= fit.curve.pieces.size() || !allFinite(apex)) {
     if (why) *why = "no such segment";
+    return std::nullopt;
+  }
+  if (!controlApex(fit.curve.pieces[piece].segment)) {
+    if (why) *why = "this segment has no control triangle (straight, or turning by pi or more)";
     return std::nullopt;
   }
   return resolvePart(fit, piece, options, [&](Chain& c, std::size_t i) -> std::string {

@@ -11,6 +11,16 @@
 
 namespace la {
 
+/// Q1 of a segment's control triangle, where its end tangents meet ahead of both ends;
+/// nullopt for a straight segment or one turning by pi or more, which has none (the
+/// edits below work on control triangles).
+std::optional<Vec2> controlApex(const LaSegment& segment);
+
+/// Why segment `piece` of a fitted curve cannot take another alpha (withSegmentAlpha), or
+/// "" where it can: its alpha is fixed by an inflection end or it is straight, or it has
+/// no control triangle.
+std::string whyAlphaIsFixed(const FitResult& fit, std::size_t piece);
+
 /// The user steering one segment: gives segment `piece` of a fitted curve the alpha
 /// `alpha` and solves G2 again over its corner-to-corner part (joint positions kept,
 /// joint tangents free; the other segments keep their alphas). Returns the updated

@@ -1402,3 +1402,30 @@ TEST(PipelineOneSegment, SpiralsOfUpToFiveTurnsFitWithFewSegments) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// The library says which segments the user can steer (the app asks it): a segment
+// turning by pi or more has no control triangle, so neither apex nor alpha steering.
+TEST(SegmentAlpha, ASegmentTurningMoreThanPiHasNoControlTriangle) {
+  const LaSegment half = LaSegment::withTurning(-1.0, 0.5 * std::numbers::pi, {0, 0}, 0.0, 0.01, 0.05);
+  const std::optional<Vec2> apex = controlApex(half);
+  ASSERT_TRUE(apex.has_value());
+  // the apex is where the end tangents meet: on both tangent lines
+  EXPECT_NEAR(cross(half.tangent(0.0), *apex - half.start()), 0.0, 1e-9);
+  EXPECT_NEAR(cross(half.tangent(half.length()), *apex - half.end()), 0.0, 1e-9);
+  EXPECT_FALSE(controlApex(LaSegment::withTurning(-1.0, 1.2 * std::numbers::pi, {0, 0}, 0.0, 0.01, 0.05)).has_value());
+  EXPECT_FALSE(controlApex(LaSegment::arc(10.0, {0, 0}, 0.0, 0.0)).has_value());
+
+  const FitResult spiral = fit(sampledSegment(LaSegment::withTurning(1.0, 2.0 * std::numbers::pi, {0, 0}, 0.0, 0.01, 0.05), 400));
+  ASSERT_EQ(spiral.curve.pieces.size(), 1u);
+  EXPECT_NE(whyAlphaIsFixed(spiral, 0).find("control triangle"), std::string::npos);
+  std::string why;
+  EXPECT_FALSE(withSegmentAlpha(spiral, 0, 0.5, FitOptions{}, &why).has_value());
+  EXPECT_FALSE(withApexMoved(spiral, 0, {10, 10}, FitOptions{}, &why).has_value());
+  EXPECT_NE(why.find("control triangle"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace la

@@ -9,6 +9,9 @@
 #include <QWheelEvent>
 #include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include "fitting/user_edits.h"
 
 namespace la::gui {
 namespace {
@@ -20,16 +23,6 @@ const QColor kCombColor(211, 47, 47, 160);
 const QColor kStrokeInkColor(60, 60, 60);
 const QColor kTriangleColor(120, 60, 170);
 const QColor kConstructionColor(27, 94, 32);
-
-// Q1 of a segment's control triangle, where its end tangents meet; false for a straight
-// or half-turn segment, which has none.
-bool controlApex(const LaSegment& seg, Vec2& apex) {
-  const Vec2 a = seg.start(), b = seg.end(), u = seg.tangent(0.0), v = seg.tangent(seg.length());
-  const double det = cross(u, v);
-  if (std::abs(seg.turning()) < 1e-9 || std::abs(det) < 1e-12) return false;
-  apex = a + (cross(b - a, v) / det) * u;
-  return true;
-}
 
 }  // namespace
 
@@ -211,8 +204,8 @@ void Canvas::mousePressEvent(QMouseEvent* e) {
       const auto& pieces = fit->curve.pieces;
       for (std::size_t i = 0; i < pieces.size(); ++i) {
         consider(pieces[i].segment.start(), k, i, false);
-        Vec2 apex;
-        if (showsTriangle(static_cast<int>(k), static_cast<int>(i)) && controlApex(pieces[i].segment, apex)) consider(apex, k, i, true);
+        if (!showsTriangle(static_cast<int>(k), static_cast<int>(i))) continue;
+        if (const std::optional<Vec2> apex = controlApex(pieces[i].segment)) consider(*apex, k, i, true);
       }
       if (!fit->curve.closed && !pieces.empty()) consider(pieces.back().segment.end(), k, pieces.size(), false);
     }
@@ -373,13 +366,13 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit, int stroke) const {
   for (std::size_t index = 0; index < curve.pieces.size(); ++index) {
     const CurvePiece& piece = curve.pieces[index];
     const LaSegment& seg = piece.segment;
-    Vec2 apex;
-    if (stroke >= 0 && showsTriangle(stroke, static_cast<int>(index)) && controlApex(seg, apex)) {
+    const std::optional<Vec2> apex = stroke >= 0 && showsTriangle(stroke, static_cast<int>(index)) ? controlApex(seg) : std::nullopt;
+    if (apex) {
       p.setPen(QPen(kTriangleColor, 1.0, Qt::DotLine));
       p.setBrush(Qt::NoBrush);
-      p.drawPolyline(QPolygonF({toWidget(seg.start()), toWidget(apex), toWidget(seg.end())}));
+      p.drawPolyline(QPolygonF({toWidget(seg.start()), toWidget(*apex), toWidget(seg.end())}));
       p.setPen(QPen(kTriangleColor, 1.2));
-      const QPointF q = toWidget(apex);  // a diamond: ctrl+drag it
+      const QPointF q = toWidget(*apex);  // a diamond: ctrl+drag it
       p.drawPolygon(QPolygonF({q + QPointF(0, -5), q + QPointF(5, 0), q + QPointF(0, 5), q + QPointF(-5, 0)}));
     }
     if (m_layers.comb && comb_world > 0) {

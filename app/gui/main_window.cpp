@@ -306,11 +306,9 @@ void MainWindow::selectSegment(int stroke, int piece) {
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
   if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
-  const bool steerable = fit && piece >= 0 && fit->pieces[piece].kind == PieceKind::kThreePoint &&
-                         std::isfinite(fit->curve.pieces[piece].segment.alpha());
-  m_parameters->setSegmentAlpha(steerable, steerable ? fit->curve.pieces[piece].segment.alpha() : 0.0,
-                                fit && piece >= 0 ? "this segment's alpha is fixed (inflection end or straight)"
-                                                  : "right-click a segment first");
+  const std::string fixed = fit && piece >= 0 ? whyAlphaIsFixed(*fit, static_cast<std::size_t>(piece)) : "right-click a segment first";
+  m_parameters->setSegmentAlpha(fixed.empty(), fixed.empty() ? fit->curve.pieces[piece].segment.alpha() : 0.0,
+                                QString::fromStdString(fixed));
   if (fit && piece >= 0) {
     const LaSegment& seg = fit->curve.pieces[piece].segment;
     m_status->setText(QString("segment %1 of stroke %2: alpha %3, length %4, curvature %5 → %6, %7")
