@@ -13,6 +13,10 @@
 namespace la {
 namespace {
 
+// A curve whose largest curvature is above this fraction of 1 / tolerance has a joint on
+// stage 7's bound (see fitStroke).
+constexpr double kOnTheBound = 0.999;
+
 // A straight stroke: its lines, a corner of pi where it turns back.
 void fitStraight(FitResult& r) {
   const std::vector<Vec2>& p = r.cleaned.points;
@@ -222,7 +226,9 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     const double allowed = kStrayWarning * f.tolerance + medianStep(f.cleaned.points);
     return f.quality.max_dev > f.tolerance || strayFromPoints(f.curve, f.cleaned.points, f.quality.diagonal) > allowed;
   };
-  if (polishing && misses(r) && !r.cleaned.straight) {
+  // (only where some joint is on the bound: elsewhere the fit without it is the same)
+  const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
+  if (polishing && bounded && !r.cleaned.straight && misses(r)) {
     FitResult free = fitOnce(stroke, options, false, start);
     if (!misses(free)) {
       free.timings.total_ms = msSince(start);
