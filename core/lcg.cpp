@@ -149,4 +149,14 @@ LcgFit fitLcg(std::span<const LcgPoint> points) {
   return fit;
 }
 
+std::vector<LcgPoint> lcgOfSegment(const LaSegment& segment, int samples) {
+  std::vector<double> kappa, dkappa;
+  const CurveSamples smp = segment.sample(samples);
+  for (std::size_t i = 0; i < smp.size(); ++i) {
+    kappa.push_back(smp.kappa[i]);
+    dkappa.push_back(segment.dkappa(smp.s[i]));
+  }
+  return lcgFromDerivative(kappa, dkappa);
+}
+
 }  // namespace la

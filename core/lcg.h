@@ -31,6 +31,7 @@
 #include <span>
 #include <vector>
 
+#include "core/la_segment.h"
 #include "core/solve_report.h"
 
 namespace la {
@@ -57,6 +58,10 @@ std::vector<LcgPoint> lcgFromDerivative(std::span<const double> kappa,
 /// difference exists). Throws std::invalid_argument if the sizes differ or s is not
 /// finite and strictly increasing.
 std::vector<LcgPoint> lcgFromSamples(std::span<const double> s, std::span<const double> kappa);
+
+/// LCG points of an LA segment from its own curvature and derivative, at `samples`
+/// points evenly along it (lcgFromDerivative skips its zero-curvature end).
+std::vector<LcgPoint> lcgOfSegment(const LaSegment& segment, int samples);
 
 /// The least-squares line y = alpha x + intercept through LCG points.
 struct LcgFit {

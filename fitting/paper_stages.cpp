@@ -190,7 +190,7 @@ double fitAlphaToPoints(double start, const Vec2& q0, const Vec2& q1, const Vec2
 }  // namespace
 
 // LCG slope of the spline between t0 and t1 (analytic curvature and its derivative).
-LcgFit lcgOfPiece(const CubicBSpline& s, double t0, double t1) {
+std::vector<LcgPoint> lcgPointsOfPiece(const CubicBSpline& s, double t0, double t1) {
   std::vector<double> kappa, dkappa;
   const int first = static_cast<int>(kLcgTrim * kLcgSamples), last = kLcgSamples - first;
   for (int k = first; k < last; ++k) {
@@ -199,8 +199,10 @@ LcgFit lcgOfPiece(const CubicBSpline& s, double t0, double t1) {
     kappa.push_back(k_t);
     dkappa.push_back(dk_t);
   }
-  return fitLcg(lcgFromDerivative(kappa, dkappa));
+  return lcgFromDerivative(kappa, dkappa);
 }
+
+LcgFit lcgOfPiece(const CubicBSpline& s, double t0, double t1) { return fitLcg(lcgPointsOfPiece(s, t0, t1)); }
 
 
 // Where to cut a piece that failed: at the spline's curvature zero nearest its middle

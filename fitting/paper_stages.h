@@ -23,8 +23,10 @@ inline constexpr double kStage7StartAlpha = 0.5;
 /// and no piece is cut where its segment strays.
 PartFit fitPart(const Part& part, const FitContext& context, bool stage7_follows);
 
-/// LCG slope of the spline between t0 and t1 (analytic curvature and its derivative),
-/// its ends trimmed where d kappa/ds -> 0 would dominate the regression.
+/// LCG points of the spline between t0 and t1 (analytic curvature and its derivative),
+/// its ends trimmed where d kappa/ds -> 0 would dominate the regression; and their
+/// regression line, whose slope is the piece's LCG alpha (PieceReport::lcg_alpha).
+std::vector<LcgPoint> lcgPointsOfPiece(const CubicBSpline& spline, double t0, double t1);
 LcgFit lcgOfPiece(const CubicBSpline& spline, double t0, double t1);
 
 /// Where to cut a spline piece that failed: at its curvature zero nearest its middle

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/lcg.h"
+#include "fitting/paper_stages.h"
 
 namespace la::gui {
 namespace {
@@ -25,24 +26,10 @@ void LcgPlot::setSegment(const FitResult* fit, int piece) {
   if (fit && piece >= 0 && piece < static_cast<int>(fit->curve.pieces.size())) {
     const LaSegment& seg = fit->curve.pieces[piece].segment;
     m_alpha = seg.alpha();
-    std::vector<double> k, dk;
-    const CurveSamples smp = seg.sample(kSamples);
-    for (std::size_t i = 0; i < smp.size(); ++i) {
-      k.push_back(smp.kappa[i]);
-      dk.push_back(seg.dkappa(smp.s[i]));
-    }
-    for (const LcgPoint& p : lcgFromDerivative(k, dk)) m_segment.emplace_back(p.log_rho, p.log_rho_ds_drho);
+    for (const LcgPoint& p : lcgOfSegment(seg, kSamples)) m_segment.emplace_back(p.log_rho, p.log_rho_ds_drho);
     const PieceReport& rep = fit->pieces[piece];
-    if (rep.spline >= 0) {  // the smoothed stroke over the same piece
-      const CubicBSpline& s = fit->splines[rep.spline];
-      std::vector<double> ks, dks;
-      for (int i = 1; i < kSamples - 1; ++i) {
-        double k_t, dk_t;
-        s.curvatureAndSlope(s.wrap(rep.t0 + (rep.t1 - rep.t0) * i / (kSamples - 1)), k_t, dk_t);
-        ks.push_back(k_t);
-        dks.push_back(dk_t);
-      }
-      const std::vector<LcgPoint> pts = lcgFromDerivative(ks, dks);
+    if (rep.spline >= 0) {  // the smoothed stroke over the same piece, as the fit read it
+      const std::vector<LcgPoint> pts = lcgPointsOfPiece(fit->splines[rep.spline], rep.t0, rep.t1);
       for (const LcgPoint& p : pts) m_data.emplace_back(p.log_rho, p.log_rho_ds_drho);
       const LcgFit lf = fitLcg(pts);
       if (lf.report.usable()) m_fit_alpha = lf.alpha, m_fit_intercept = lf.intercept, m_r2 = lf.r2;
