@@ -130,6 +130,8 @@ CurveOrError entryFromJson(const json& entry, const std::string& where) {
 
 }  // namespace
 
+void stampCurvesFormat(nlohmann::json& document) { document["format"] = kCurvesFormat; }
+
 json segmentToJson(const LaSegment& segment, bool corner) {
   json result = {
       {"alpha", alphaToJson(segment.alpha())},
@@ -190,6 +192,15 @@ std::vector<CurveOrError> parseCurvesDocument(std::string_view text,
   const json document = parseJson(text, source_name);
   try {
     requireObject(document, "a curves document", "");
+    if (const auto format = document.find("format"); format != document.end()) {
+      if (!format->is_string()) fail("", "\"format\" must be a string, got " + typeName(*format));
+      const std::string name = format->get<std::string>();
+      if (name != kCurvesFormat) {
+        const std::string family = "lafair-curves/";
+        fail("", name.starts_with(family) ? "format " + name + " is newer than this reader's " + kCurvesFormat
+                                          : "format " + name + " is not " + kCurvesFormat);
+      }
+    }
     std::vector<CurveOrError> result;
     if (const auto it = document.find("curves"); it != document.end()) {
       if (!it->is_array()) fail("", "\"curves\" must be an array, got " + typeName(*it));
@@ -222,7 +233,8 @@ std::string curvesDocumentToString(const std::vector<CurveOrError>& curves) {
     else
       entries.push_back(json::object({{"error", entry.error}}));
   }
-  const json document = {{"curves", std::move(entries)}};
+  json document = {{"curves", std::move(entries)}};
+  stampCurvesFormat(document);
   // Error texts may quote file names or input that are not valid UTF-8: replace
   // such bytes (U+FFFD) rather than fail to write the whole document.
   return document.dump(2, ' ', false, json::error_handler_t::replace) + "\n";

@@ -8,6 +8,9 @@
 // (circle or line) is the string "inf" or "-inf", since JSON has no infinity. A
 // curve is {"segments": [...], "closed": bool}; a document holds one curve, or
 // several as {"curves": [curve or {"error": "why"}, ...]}, one entry per input stroke.
+// Documents name their version at the top: "format": "lafair-curves/1"; one without it
+// (written before the key existed, or by another tool) is read as version 1, one of a
+// later version is refused with both versions named.
 //
 // Numbers round-trip exactly: nlohmann::json writes a double with the shortest
 // digits that read back to the same bits (Grisu2, at most 17 significant digits)
@@ -46,6 +49,12 @@ struct CurveOrError {
   std::optional<Curve> curve;
   std::string error;  // why there is no curve; ignored (not written) when curve is set
 };
+
+/// The version of the format this code writes and reads.
+inline constexpr const char* kCurvesFormat = "lafair-curves/1";
+
+/// Names the format at the top of a document (a single curve or {"curves": ...}).
+void stampCurvesFormat(nlohmann::json& document);
 
 nlohmann::json segmentToJson(const LaSegment& segment, bool corner = false);
 

@@ -453,3 +453,42 @@ TEST(SegmentJson, ErrorMessageStartsWithTheGivenLocation) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// The format is versioned: a document names "lafair-curves/1"; one without the key (an
+// older file, another tool's) reads as version 1; a later version, or another format,
+// is refused with the versions named.
+TEST(CurvesDocument, NamesItsFormatAndReadsDocumentsWithout) {
+  const std::vector<CurveOrError> document = sampleDocument();
+  json written = json::parse(curvesDocumentToString(document));
+  EXPECT_EQ(written.at("format"), "lafair-curves/1");
+  json unversioned = written;
+  unversioned.erase("format");
+  expectSameDocument(document, parseCurvesDocument(unversioned.dump(), "old.json"));
+
+  auto errorOf = [](const json& doc) {
+    try {
+      parseCurvesDocument(doc.dump(), "v.json");
+    } catch (const CurveFormatError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  json later = written;
+  later["format"] = "lafair-curves/2";
+  const std::string newer = errorOf(later);
+  EXPECT_NE(newer.find("v.json"), std::string::npos) << newer;
+  EXPECT_NE(newer.find("lafair-curves/2"), std::string::npos) << newer;
+  EXPECT_NE(newer.find("lafair-curves/1"), std::string::npos) << newer;
+  json other = written;
+  other["format"] = "lafair-sketch";
+  EXPECT_NE(errorOf(other).find("lafair-sketch"), std::string::npos);
+  json number = written;
+  number["format"] = 1;
+  EXPECT_NE(errorOf(number).find("\"format\" must be a string"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace la

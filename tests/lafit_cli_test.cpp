@@ -525,6 +525,7 @@ TEST_F(LafitCli, FitWritesTheOptionsItUsed) {
   copyData("curves/airfoils/clark-y.dat", "clark-y.dat");
   const Outcome r = lafit({"fit", "clark-y.dat", "-o", "curve.json", "--time-budget", "500", "--max-extrema", "4"});
   ASSERT_EQ(r.status, 0) << r;
+  EXPECT_EQ(readJson("curve.json").at("format"), "lafair-curves/1");
   const json options = readJson("curve.json").at("options");
   EXPECT_EQ(options.at("time_budget_ms").get<double>(), 500.0);
   EXPECT_EQ(options.at("max_extrema").get<int>(), 4);
@@ -781,6 +782,21 @@ TEST_F(LafitCli, BatchFitsTheGoodFilesAndReportsTheBadOne) {
   EXPECT_TRUE(bad_row) << r;
   EXPECT_TRUE(contains(r.out, "3 files: 2 fitted, 1 unreadable")) << r;
   EXPECT_TRUE(contains(r.err, "3/3")) << "no progress bar\n" << r;
+}
+
+// A file none of whose strokes can be fitted gets no output in a batch, as `lafit fit`
+// writes none; the summary counts its strokes.
+TEST_F(LafitCli, BatchWritesNothingForAFileWhoseStrokesAllFail) {
+  copyData("strokes/dollar1_unistroke_s01_pilot/csv/medium/v.csv", "in/v.csv");
+  write("in/dots.csv", "0,0\n0,0\n\n5,5\n5,5\n6,6\n");  // two strokes of fewer than 3 distinct points
+  const Outcome r = lafit({"batch", "in", "-o", "out"});
+  EXPECT_EQ(r.status, kExitInputError) << r;
+  EXPECT_EQ(listing(at("out")), (std::set<std::string>{"v.json"}));
+  EXPECT_TRUE(contains(r.out, "2 files: 1 fitted, 0 unreadable, 1 without a stroke that fits (not written)")) << r;
+  EXPECT_TRUE(contains(r.out, "4 strokes: 2 fitted, 2 could not be fitted")) << r;
+  const Outcome single = lafit({"fit", "in/dots.csv", "-o", "dots.json"});
+  EXPECT_EQ(single.status, kExitInputError) << single;
+  EXPECT_FALSE(fs::exists(at("dots.json")));
 }
 
 TEST_F(LafitCli, BatchOfGoodFilesExitsZero) {

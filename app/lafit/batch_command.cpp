@@ -36,7 +36,9 @@ DIR itself.
   --jobs N        parallel jobs (default: all cores)
 
 A file that cannot be read is reported in the summary and skipped; the others are
-still fitted and written.
+still fitted and written. A file none of whose strokes can be fitted gets no output, as
+with `lafit fit` (an existing one is left as it was). The summary counts files and
+strokes.
 
 exit status: 0 every file and stroke fitted, 1 some file could not be read or some
 stroke could not be fitted (the summary says which), 2 usage error
@@ -117,12 +119,14 @@ int batchCommand(const std::vector<std::string>& argv) {
         const auto t0 = std::chrono::steady_clock::now();
         const FileFit fit = fitFile(files[i], options, args.has("--stages"));
         row.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        const fs::path target = outputOf(files[i], ".json");
-        fs::create_directories(target.parent_path());
-        writeFileAtomically(target, fit.document.dump(2) + "\n");
-        if (args.has("--svg")) writeFileAtomically(outputOf(files[i], ".svg"), curvesToSvg(fit.curves(), fit.points()));
         row.strokes = static_cast<int>(fit.strokes.size());
         row.failed = fit.failed();
+        if (row.failed < row.strokes) {  // (as `lafit fit`: nothing written where no stroke fits)
+          const fs::path target = outputOf(files[i], ".json");
+          fs::create_directories(target.parent_path());
+          writeFileAtomically(target, fit.document.dump(2) + "\n");
+          if (args.has("--svg")) writeFileAtomically(outputOf(files[i], ".svg"), curvesToSvg(fit.curves(), fit.points()));
+        }
         for (const auto& r : fit.results) {
           if (!r) continue;
           row.segments += r->quality.segments;
@@ -147,19 +151,23 @@ int batchCommand(const std::vector<std::string>& argv) {
   std::fprintf(stderr, "\n");
 
   std::printf("%-50s %7s %6s %8s %12s %9s %9s\n", "file", "strokes", "failed", "segments", "max_dev/diag", "g2_gap", "time_ms");
-  int bad_files = 0, bad_strokes = 0;
+  int bad_files = 0, bad_strokes = 0, strokes = 0, unwritten = 0;
   for (const Row& r : rows) {
     if (r.strokes == 0 && !r.error.empty()) {
       ++bad_files;
       std::printf("%-50s error: %s\n", r.name.c_str(), r.error.c_str());
       continue;
     }
+    strokes += r.strokes;
     bad_strokes += r.failed;
+    if (r.failed == r.strokes) ++unwritten;
     std::printf("%-50s %7d %6d %8d %12.3g %9.2g %9.2f\n", r.name.c_str(), r.strokes, r.failed, r.segments, r.max_dev_rel,
                 r.g2_gap, r.ms);
   }
-  std::printf("%zu files: %zu fitted, %d unreadable; %d strokes could not be fitted\n", files.size(),
-              files.size() - bad_files, bad_files, bad_strokes);
+  std::printf("%zu files: %zu fitted, %d unreadable, %d without a stroke that fits (not written); "
+              "%d strokes: %d fitted, %d could not be fitted\n",
+              files.size(), files.size() - bad_files - unwritten, bad_files, unwritten, strokes, strokes - bad_strokes,
+              bad_strokes);
   return (bad_files || bad_strokes) ? 1 : 0;
 }
 

@@ -67,6 +67,7 @@ int compoundCommand(const std::vector<std::string>& argv) {
             << p1.start().x() << "," << p1.start().y() << " at " << solve.joint_theta / kDegree << " degrees"
             << "\niterations " << solve.report.iterations << "\nresidual " << solve.report.residual << "\n";
   nlohmann::json doc = curveToJson(curve);
+  stampCurvesFormat(doc);
   nlohmann::json points = nlohmann::json::array();
   for (const Vec2& p : q) points.push_back({p.x(), p.y()});
   doc["solve"] = {{"status", toString(solve.report.status)},

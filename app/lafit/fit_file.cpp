@@ -5,6 +5,7 @@
 #include "app/io/fit_json.h"
 #include "app/io/fit_options_json.h"
 #include "app/io/point_file.h"
+#include "core/curve_json.h"
 
 namespace la::cli {
 
@@ -64,6 +65,7 @@ FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, b
   }
   out.document = curves.size() == 1 && !curves[0].contains("error") ? curves[0] : nlohmann::json{{"curves", curves}};
   out.document["options"] = fitOptionsToJson(options);
+  stampCurvesFormat(out.document);
   return out;
 }
 

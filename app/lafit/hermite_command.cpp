@@ -64,6 +64,7 @@ int hermiteCommand(const std::vector<std::string>& argv) {
             << "\nkappa_joint2 " << solve.kappa2 << "\nsegments " << curve.pieces.size() << "\niterations "
             << solve.report.iterations << "\nresidual " << solve.report.residual << "\n";
   nlohmann::json doc = curveToJson(curve);
+  stampCurvesFormat(doc);
   doc["solve"] = {{"status", toString(solve.report.status)},
                   {"iterations", solve.report.iterations},
                   {"residual", solve.report.residual},

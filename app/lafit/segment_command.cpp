@@ -55,6 +55,7 @@ int segmentCommand(const std::vector<std::string>& argv) {
   Curve curve;
   curve.pieces.push_back({seg, false});
   nlohmann::json doc = curveToJson(curve);
+  stampCurvesFormat(doc);
   doc["solve"] = {{"status", toString(solve.report.status)},
                   {"iterations", solve.report.iterations},
                   {"residual", solve.report.residual},
