@@ -335,16 +335,16 @@ SmoothingResult smoothWithBSpline(const std::vector<Vec2>& points, bool closed, 
       if ((closed || i + 1 < n) && side((i + 1) % n) * mine > 0.0) shared[j] = 1;
     }
     std::vector<double> next{breaks.front()};
-    bool split = false;
+    int added = 0;  // (the spans of this round count against max_spans too)
     for (int j = 0; j < spans; ++j) {
       const bool worth = count[j] >= kMinPointsToSplit || (shared[j] && count[j] >= kMinPointsToSplitShared);
-      if (bad[j] && worth && spans + 1 <= options.max_spans) {
+      if (bad[j] && worth && spans + added + 1 <= options.max_spans) {
         next.push_back(0.5 * (breaks[j] + breaks[j + 1]));
-        split = true;
+        ++added;
       }
       next.push_back(breaks[j + 1]);
     }
-    if (!split) break;
+    if (added == 0) break;
     breaks = std::move(next);
   }
   result.rounds = round + 1;

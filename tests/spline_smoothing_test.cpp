@@ -483,7 +483,7 @@ TEST(SmoothWithBSplineKnownDefect, DISABLED_VeryDenseExactSineStaysNearThePoints
 // max_spans is not a cap: every bad span of a round is split when the count before the
 // round is below it, so one round can overshoot it (to nearly twice the limit).
 // Observed: 100 exact sine points, tolerance 1e-4, max_spans 20: 32 spans.
-TEST(SmoothWithBSplineKnownDefect, DISABLED_MaxSpansCapsTheKnots) {
+TEST(SmoothWithBSpline, MaxSpansCapsTheKnots) {
   const Sine sine;
   const std::vector<Vec2> pts = sinePoints(sine, 100, 0.0, 0);
   SmoothingOptions o = optionsFor(1e-4);
