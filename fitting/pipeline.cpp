@@ -5,6 +5,7 @@
 #include <string>
 
 #include "fitting/fit_context.h"
+#include "fitting/one_segment.h"
 #include "fitting/paper_stages.h"
 #include "fitting/parts.h"
 #include "fitting/stage7.h"

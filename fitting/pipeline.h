@@ -34,7 +34,7 @@
 // Special shapes. Points all on one line are a line (or lines where the stroke turns
 // back). A whole open stroke without corners that turns further than a merge may is
 // first tried as one LA segment (a clothoid, a spiral of several turns), stages 2-6
-// skipped where it fits.
+// skipped where it fits (fitting/one_segment.h).
 //
 // A stroke with deliberate corners is fitted piecewise between them; the segment after
 // a corner carries corner = true. With stage 7, a corner beside a part that misses the

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fitting/fit_context.h"
+#include "fitting/model_selection.h"
 #include "fitting/parts.h"
 
 namespace la {
@@ -26,10 +27,10 @@ inline constexpr double kStrayWarning = 2.0;
 /// pipeline over the cap).
 void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true);
 
-/// A whole open stroke without corners drawn as one LA curve, fitted as that one segment
-/// (stage7.cpp, oneSegment, says how); nullopt where it is not one within the tolerance.
-/// No spline: stages 2-6 are not needed.
-std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context);
+/// Stage 7's selection options for `parts` parts' points: the tolerance less a margin,
+/// the alpha range and the bound on curvature, the points and iterations per fit, the
+/// noise, the cap and the deadline; closure, fixed ends and corners are the caller's.
+SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 1);
 
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);

@@ -1,0 +1,159 @@
+#include "fitting/one_segment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "fitting/model_selection.h"
+#include "fitting/spline_chain.h"
+#include "fitting/stage7.h"
+
+namespace la {
+namespace {
+
+// The segment read off the points: its total turning (the chords of neighbours `span`
+// apart followed along it, `span` long enough that noise cannot turn a chord by much),
+// its length, the mean curvature over a few chords at each end, and the alphas whose
+// segments with those are about as long as the points; then fitted by least squares,
+// from each of those starts until one is within the tolerance. Nullopt where the turning
+// changes direction inside (an LA segment inflects at an end only) or the fit misses the
+// tolerance.
+std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOptions& so, double noise) {
+  constexpr double kChordNoise = 20.0;  // a chord at least this many noise sigmas long
+  constexpr double kEnd = 0.03;        // of the chords at each end, for the end curvatures
+  // (five unknowns: a step costs little, and a spiral of several turns starts far off)
+  constexpr int kOneSegmentIterations = 40;
+  constexpr std::size_t kOneSegmentStarts = 3;
+  constexpr std::size_t kCurvatureWindows = 8;  // for the test of monotone curvature
+  const std::vector<Vec2>& p = part.points;
+  const std::size_t m = p.size();
+  const double step = medianStep(p);
+  const std::size_t span =
+      std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(kChordNoise * noise / std::max(step, 1e-300))), 1, m / 8 + 1);
+  if (m < 2 * span + 3) return std::nullopt;
+  std::vector<double> angle;  // of each chord p[i] -> p[i + span], followed along
+  for (std::size_t i = 0; i + span < m; ++i) {
+    const double a = angleOf(p[i + span] - p[i]);
+    angle.push_back(angle.empty() ? a : angle.back() + wrapAngle(a - angle.back()));
+  }
+  // (the length from the chords, each standing for one of the m - 1 steps: noise
+  // lengthens the polyline between neighbours)
+  double chords = 0.0;
+  for (std::size_t i = 0; i + span < m; ++i) chords += (p[i + span] - p[i]).norm() / static_cast<double>(span);
+  const double length = chords * static_cast<double>(m - 1) / static_cast<double>(m - span);
+  // (the first chord's direction is half a chord in, the last's half a chord short)
+  const double turning = (angle.back() - angle.front()) * static_cast<double>(m - 1) / static_cast<double>(m - 1 - span);
+  // (the selection's merges make a segment turning up to max_turning: only a part turning
+  // further needs this)
+  if (!(length > 0.0) || !(std::abs(turning) > so.max_turning)) return std::nullopt;
+  const double sign = turning < 0.0 ? -1.0 : 1.0;
+  // (a turn back from the furthest direction so far by more than the noise can turn a
+  // chord, sqrt(2) noise / chord per chord, at about 8 sigmas: an inflection inside; a
+  // smaller one that is real makes the fit miss)
+  const double slack = 12.0 * noise / (span * step);
+  double low = angle.front();
+  for (double a : angle) {
+    if ((a - low) * sign < -slack) return std::nullopt;
+    if ((a - low) * sign > 0.0) low = a;
+  }
+  // (an LA segment's curvature is monotone: the turning of successive windows of the
+  // chords may not rise and fall again, or fall and rise, by more than a quarter of the
+  // largest or four times what noise makes of a window's turning, 2 noise / chord)
+  const std::size_t window = std::max<std::size_t>(3, angle.size() / kCurvatureWindows);
+  std::vector<double> kappa;
+  for (std::size_t i = 0; i + window < angle.size(); i += window) kappa.push_back(std::abs(angle[i + window] - angle[i]));
+  const double largest = *std::max_element(kappa.begin(), kappa.end());
+  const double reversal = std::max(0.25 * largest, 8.0 * noise / (span * step));
+  double top = kappa.front(), bottom = kappa.front();
+  int trend = 0;  // +1 rising, -1 falling, once a change beyond `reversal` shows it
+  for (double k : kappa) {
+    top = std::max(top, k), bottom = std::min(bottom, k);
+    if (trend >= 0 && top - k > reversal) {
+      if (trend > 0) return std::nullopt;
+      trend = -1, bottom = k;
+    } else if (trend <= 0 && k - bottom > reversal) {
+      if (trend < 0) return std::nullopt;
+      trend = 1, top = k;
+    }
+  }
+  // (the mean curvature over the `end` chords at each end and over the next `end`,
+  // extrapolated to the end itself; at least a tenth of the mean, of the turning's sign)
+  const std::size_t end = std::max<std::size_t>(3, static_cast<std::size_t>(kEnd * angle.size()));
+  if (angle.size() < 2 * end + 1) return std::nullopt;
+  const double end_length = static_cast<double>(end) * length / static_cast<double>(angle.size());
+  const double mean = std::abs(turning) / length;
+  auto endKappa = [&](double first, double second) {
+    return sign * std::max(std::abs(1.5 * first - 0.5 * second) / end_length, 0.1 * mean);
+  };
+  const std::size_t last = angle.size() - 1;
+  const double k0 = endKappa(angle[end] - angle[0], angle[2 * end] - angle[end]);
+  const double k1 = endKappa(angle[last] - angle[last - end], angle[last - end] - angle[last - 2 * end]);
+  // (the chords' tangent at the start: the first chord's, turned back by half of its bend)
+  const double theta0 = angle.front() - 0.5 * k0 * span * step;
+  // (the alphas whose segments come nearest the points' length, the nearest first: a
+  // spiral of several turns has local minima where a start lands on the wrong turn)
+  std::vector<std::pair<double, LaSegment>> starts;
+  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += 0.25) {
+    try {
+      const LaSegment seg = LaSegment::withTurning(alpha, turning, p.front(), theta0, k0, k1);
+      starts.push_back({std::abs(seg.length() - length), seg});
+    } catch (const std::invalid_argument&) {
+    }
+  }
+  std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (starts.size() > kOneSegmentStarts) starts.erase(starts.begin() + kOneSegmentStarts, starts.end());
+  ChainFitOptions co = so.fit;
+  co.min_length = so.tolerance;
+  co.max_iterations = kOneSegmentIterations;
+  // (each point's foot where its arc length puts it: found from scratch, a point could
+  // take its foot on the neighbouring turn of a spiral)
+  std::vector<ChainFoot> feet;
+  double walked = 0.0, walk = 0.0;
+  for (std::size_t i = 1; i < m; ++i) walk += (p[i] - p[i - 1]).norm();
+  for (std::size_t i = 0; i < m; ++i) {
+    if (i > 0) walked += (p[i] - p[i - 1]).norm();
+    feet.push_back({0, walked / walk});
+  }
+  // (each start as it is, then with its end shot onto the last point: a spiral's far
+  // turns follow its end, but a shot from a poor start curvature bends the law wrongly)
+  std::vector<LaSegment> tries;
+  for (const auto& [miss, guess] : starts) {
+    tries.push_back(guess);
+    if (const auto shot = shootSegment(turning, p.front(), theta0, k0, k1, guess.alpha(), so.fit.min_alpha, so.fit.max_alpha, p.back()))
+      tries.push_back(*shot);
+  }
+  for (const LaSegment& guess : tries) {
+    ChainFitResult r = fitChain({guess}, p, feet, co);
+    if (r.report.status != SolveStatus::kBadInput && r.max_distance <= so.tolerance) return r;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context) {
+  // (a side between corners is fitted with the others across them, where one segment
+  // pinned at both corners may stray)
+  if (part.closed || part.starts_at_corner || part.ends_at_corner) return std::nullopt;
+  const std::optional<ChainFitResult> one = oneSegment(part, stage7Selection(context), context.noise.sigma);
+  if (!one) return std::nullopt;
+  PartFit fit;
+  fit.segments = one->segments;
+  PieceReport report;
+  const LaSegment& s = fit.segments.front();
+  report.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+                : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                      : PieceKind::kThreePoint;
+  report.alpha = s.alpha();
+  report.lcg_alpha = report.lcg_r2 = NAN;  // (no spline: stages 2-6 did not run)
+  if (!one->alpha_standard_error.empty()) report.alpha_standard_error = one->alpha_standard_error.front();
+  fit.reports = {report};
+  fit.max_dev = one->max_distance;
+  fit.smoothing = {SolveStatus::kConverged, 0, 0.0, "not needed: one LA segment"};
+  fit.g2 = {SolveStatus::kConverged, one->report.iterations, 0.0, "one LA segment (stage 7)"};
+  return fit;
+}
+
+}  // namespace la

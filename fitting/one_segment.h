@@ -1,0 +1,21 @@
+#pragma once
+// A whole open stroke drawn as one LA curve (a clothoid, a logarithmic spiral or a circle
+// involute of any number of turns, an arc) fitted as that one segment, before stages
+// 2-6: no edit of a chain of several finds such a segment where it turns further than a
+// merge may (SelectionOptions::max_turning), and a smoothing spline of a spiral of
+// several turns is slow and may loop.
+
+#include <optional>
+
+#include "fitting/fit_context.h"
+#include "fitting/parts.h"
+
+namespace la {
+
+/// The part as one LA segment within the tolerance, or nullopt: a part that is closed,
+/// pinned at a corner, turns no further than a merge may, turns back (an LA segment
+/// inflects at an end only), or whose curvature rises and falls, is not tried; a fit
+/// that misses the tolerance is not kept. No spline: stages 2-6 are not needed.
+std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context);
+
+}  // namespace la
