@@ -1,8 +1,9 @@
 # The CTest test InstalledPackageBuildsAConsumer (registered in tests/CMakeLists.txt):
 #   1. cmake --install the build tree into a fresh prefix under WORK_DIR;
 #   2. configure this directory's consumer project against it (CMAKE_PREFIX_PATH only,
-#      no package registry), with the build's generator and compiler;
-#   3. build it and 4. run it (it fits a noisy arc and checks tolerance and G2).
+#      no package registry; lafair must be found there), with the build's generator
+#      and compiler;
+#   3. build it and 4. run it (it fits a noisy wave and checks tolerance and G2).
 # Any failing step fails the test with a message naming the step. It installs what is
 # built: run it after building (scripts/test.sh does).
 #
