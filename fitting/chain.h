@@ -15,7 +15,7 @@ const char* toString(PieceKind kind);
 
 struct ChainPiece {
   PieceKind kind = PieceKind::kThreePoint;
-  double alpha = -1.0;  // used by kThreePoint; solved (and written back) for inflection pieces
+  double alpha = -1.0;  // used by kThreePoint; an inflection piece solves its own (read it off its segment)
 };
 
 struct Chain {
