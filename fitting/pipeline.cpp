@@ -45,14 +45,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
   r.cleaned = cleanStroke(stroke, options.cleanup);
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
-  r.tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
+  r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
   const Noise noise = noiseOf(r.cleaned.points);
-  const double floor = noise.floor;
-  if (r.tolerance < floor) {
-    r.warnings.push_back("tolerance raised from " + std::to_string(r.tolerance) + " to " + std::to_string(floor) +
-                         ": the noise floor of the points (their estimated noise and pixel grid)");
-    r.tolerance = floor;
-  }
+  r.tolerance = std::max(r.requested_tolerance, noise.floor);
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};

@@ -122,6 +122,10 @@ struct FitResult {
   StageTimings timings;
   CleanStroke cleaned;
   double tolerance = 0.0;  // absolute, as used
+  /// The tolerance the options asked for (absolute). Where the points are noisier (their
+  /// noise floor, fitting/stroke_noise.h), `tolerance` is raised to it: information, not
+  /// a warning (it is so on nearly every pen stroke).
+  double requested_tolerance = 0.0;
   std::vector<CubicBSpline> splines;  // stage 2, one per part (straight parts have none)
   std::vector<std::vector<SplitPoint>> splits;  // stage 3, per part
   std::vector<PieceReport> pieces;    // stages 4-5, one per segment of `curve`

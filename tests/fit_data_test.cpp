@@ -191,7 +191,7 @@ void fitDataSet(const DataSet& set) {
       }
       segments += r.quality.segments;
       extrema += r.quality.extrema;
-      if (warns(r, "tolerance raised")) ++raised;
+      if (r.tolerance > r.requested_tolerance) ++raised;
       const double ratio = r.quality.max_dev / r.tolerance;
       if (!(ratio <= worst_ratio)) worst_ratio = ratio, worst_where = where;
 

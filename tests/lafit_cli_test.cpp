@@ -429,14 +429,26 @@ TEST_F(LafitCli, FitAppliesToleranceAndMaxExtrema) {
   copyData(kBrace, "brace.csv");
   // A coarse tolerance is the bound on the deviation, as a fraction of the diagonal
   // (0.02 lies above the noise floor of these 1-pixel points, so lafit keeps it as given;
-  // the default 0.005 it raises, with a warning).
+  // the default 0.005 it raises: information in the figures, a star in the table, and
+  // no warning).
   Outcome r = lafit({"fit", "brace.csv", "--tolerance", "0.02", "-o", "coarse.json"});
   ASSERT_EQ(r.status, 0) << r;
   for (const json& curve : curvesOf(readJson("coarse.json"))) {
     const json& q = curve.at("quality");
     EXPECT_NEAR(q.at("tolerance").get<double>(), 0.02 * q.at("diagonal").get<double>(),
                 1e-12 * q.at("diagonal").get<double>());
+    EXPECT_EQ(q.at("tolerance_requested").get<double>(), q.at("tolerance").get<double>());
     EXPECT_LE(q.at("max_dev").get<double>(), q.at("tolerance").get<double>() * (1 + 1e-9));
+  }
+  const Outcome fine = lafit({"fit", "brace.csv", "-o", "fine.json"});
+  ASSERT_EQ(fine.status, 0) << fine;
+  EXPECT_FALSE(contains(fine.out, "warning")) << fine;
+  EXPECT_TRUE(contains(fine.out, "* the tolerance asked for, raised to the noise floor")) << fine;
+  for (const json& curve : curvesOf(readJson("fine.json"))) {
+    const json& q = curve.at("quality");
+    EXPECT_NEAR(q.at("tolerance_requested").get<double>(), 0.005 * q.at("diagonal").get<double>(),
+                1e-12 * q.at("diagonal").get<double>());
+    EXPECT_GT(q.at("tolerance").get<double>(), q.at("tolerance_requested").get<double>());
   }
 
   // --max-extrema caps the curvature extrema the segmentation keeps in each smooth part

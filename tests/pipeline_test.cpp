@@ -505,11 +505,7 @@ class StatsPrinter : public ::testing::Environment {
 };
 [[maybe_unused]] ::testing::Environment* const kStatsPrinter = ::testing::AddGlobalTestEnvironment(new StatsPrinter);
 
-bool raisedTolerance(const FitResult& r) {
-  for (const std::string& w : r.warnings)
-    if (w.find("tolerance raised") != std::string::npos) return true;
-  return false;
-}
+bool raisedTolerance(const FitResult& r) { return r.tolerance > r.requested_tolerance; }
 
 FitResult fit(const std::vector<Vec2>& points, const FitOptions& options = {}) {
   FitResult r = fitStroke(strokeOf(points), options);

@@ -53,6 +53,7 @@ nlohmann::json fitResultToJson(const FitResult& r, const Stroke& raw, bool with_
   for (const PieceReport& p : r.pieces) r2.push_back(number(p.lcg_r2));
   quality["lcg_r2"] = r2;
   quality["tolerance"] = r.tolerance;
+  quality["tolerance_requested"] = r.requested_tolerance;  // (below `tolerance` where the noise floor raised it)
   j["quality"] = quality;
   j["timings_ms"] = {{"cleanup", r.timings.cleanup_ms},   {"smoothing", r.timings.smoothing_ms},
                      {"segmentation", r.timings.segmentation_ms}, {"alpha", r.timings.alpha_ms},

@@ -36,8 +36,9 @@ not be fitted (message on stderr), 2 usage error
 )";
 
 void printFigures(const FileFit& fit) {
-  std::printf("%-6s %5s %6s %10s %10s %9s %9s %7s %7s %7s %9s\n", "stroke", "segs", "closed", "max_dev",
-              "rms_dev", "g1_gap", "g2_gap", "extrema", "inflect", "corners", "time_ms");
+  std::printf("%-6s %5s %6s %10s %11s %10s %9s %9s %7s %7s %7s %9s\n", "stroke", "segs", "closed", "max_dev",
+              "tolerance", "rms_dev", "g1_gap", "g2_gap", "extrema", "inflect", "corners", "time_ms");
+  bool raised = false;
   for (std::size_t i = 0; i < fit.strokes.size(); ++i) {
     if (!fit.results[i]) {
       std::printf("%-6zu error: %s\n", i + 1, fit.errors[i].c_str());
@@ -45,11 +46,14 @@ void printFigures(const FileFit& fit) {
     }
     const FitResult& r = *fit.results[i];
     const QualityFigures& q = r.quality;
-    std::printf("%-6zu %5d %6s %10.4g %10.4g %9.2g %9.2g %7d %7d %7d %9.3f\n", i + 1, q.segments,
-                r.curve.closed ? "yes" : "no", q.max_dev, q.rms_dev, q.g1_gap, q.g2_gap, q.extrema, q.inflections,
-                q.corners, r.timings.total_ms);
+    const bool noisy = r.tolerance > r.requested_tolerance;
+    raised |= noisy;
+    std::printf("%-6zu %5d %6s %10.4g %10.4g%s %10.4g %9.2g %9.2g %7d %7d %7d %9.3f\n", i + 1, q.segments,
+                r.curve.closed ? "yes" : "no", q.max_dev, r.tolerance, noisy ? "*" : " ", q.rms_dev, q.g1_gap, q.g2_gap,
+                q.extrema, q.inflections, q.corners, r.timings.total_ms);
     for (const std::string& w : r.warnings) std::printf("       warning: %s\n", w.c_str());
   }
+  if (raised) std::printf("* the tolerance asked for, raised to the noise floor of the points (their noise and pixel grid)\n");
 }
 
 }  // namespace
