@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 #include "fitting/fit_context.h"
@@ -14,6 +15,9 @@
 namespace la {
 namespace {
 
+// A stroke whose left-out samples span more than this fraction of its drawn length says
+// so (DESIGN.md section 6).
+constexpr double kLeftOutWarning = 0.05;
 // A curve whose largest curvature is above this fraction of 1 / tolerance has a joint on
 // stage 7's bound (see fitStroke).
 constexpr double kOnTheBound = 0.999;
@@ -38,6 +42,25 @@ void fitStraight(FitResult& r) {
   r.timings.quality_ms = msSince(tq);
 }
 
+// The deviation over every finite raw sample, and a warning where the samples the
+// clean-up left out span more than kLeftOutWarning of the drawn length.
+void measureLeftOut(FitResult& r, const Stroke& stroke) {
+  std::vector<Vec2> all;
+  for (const StrokeSample& s : stroke.samples)
+    if (allFinite(s.p)) all.push_back(s.p);
+  r.max_dev_all_points = 0.0;
+  for (double d : distancesToCurve(r.curve, all, r.quality.diagonal)) r.max_dev_all_points = std::max(r.max_dev_all_points, d);
+  if (!(r.cleaned.left_out_fraction > kLeftOutWarning)) return;
+  std::map<std::string, int> reasons;
+  for (const LeftOutPoint& l : r.cleaned.left_out) ++reasons[toString(l.why)];
+  std::string why;
+  for (const auto& [reason, count] : reasons) why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + reason;
+  r.warnings.push_back("the curve leaves out " + std::to_string(r.cleaned.left_out.size()) + " samples (" + why + "), " +
+                       std::to_string(static_cast<int>(std::round(100.0 * r.cleaned.left_out_fraction))) +
+                       "% of the drawn length; over all samples it passes up to " + std::to_string(r.max_dev_all_points) +
+                       " from them");
+}
+
 // The whole pipeline, stage 7 bending no tighter than the tolerance where
 // `bound_radius`; the time budget counts from `start`.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_radius, Clock::time_point start) {
@@ -57,6 +80,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
 
   if (r.cleaned.straight) {
     fitStraight(r);
+    measureLeftOut(r, stroke);
     r.timings.total_ms = msSince(start);
     return r;
   }
@@ -181,6 +205,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
   }
   const auto tq = Clock::now();
   r.quality = measureQuality(r.curve, r.cleaned.points);
+  measureLeftOut(r, stroke);
   r.timings.quality_ms = msSince(tq);
   // Said from the measured figures, whichever stage or start the curve came from.
   double stray = 0.0;  // (fitOne measured most parts already)

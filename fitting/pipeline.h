@@ -132,6 +132,9 @@ struct FitResult {
   SolveReport smoothing;              // worst part's smoothing report
   SolveReport g2;                     // worst part's G2 report
   bool out_of_time = false;  // the time budget ran out: stage 7 stopped early
+  /// The largest distance from every finite raw sample to the curve, those the clean-up
+  /// left out included (cleaned.left_out; quality.max_dev is over the kept points).
+  double max_dev_all_points = 0.0;
   /// How far the curve goes from the stroke's polyline where it is longer than it (a
   /// loop where no point is); warned above twice the tolerance.
   double stray = 0.0;

@@ -141,17 +141,39 @@ double lineDistance(const Vec2& q, const Vec2& a, const Vec2& b) {
 struct Points {
   std::vector<Vec2> p;
   std::vector<std::size_t> src;
+  std::vector<LeftOutPoint>* left_out = nullptr;  // where what is cut off is listed
 
   std::size_t size() const { return p.size(); }
-  void dropFront(std::size_t k) {
+  void dropFront(std::size_t k, LeftOutReason why) {
+    for (std::size_t i = 0; i < k; ++i) left_out->push_back({src[i], why});
     p.erase(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(k));
     src.erase(src.begin(), src.begin() + static_cast<std::ptrdiff_t>(k));
   }
-  void keepFront(std::size_t k) {
+  void keepFront(std::size_t k, LeftOutReason why) {
+    for (std::size_t i = k; i < src.size(); ++i) left_out->push_back({src[i], why});
     p.resize(k);
     src.resize(k);
   }
 };
+
+// The fraction of the drawn length (the finite samples' polyline) spanned by the steps
+// that touch a left-out sample (not a duplicate: it lies on a kept point).
+double leftOutFraction(const Stroke& raw, const std::vector<LeftOutPoint>& left_out) {
+  std::vector<bool> out(raw.samples.size(), false);
+  for (const LeftOutPoint& l : left_out) out[l.sample] = l.why != LeftOutReason::kDuplicate;
+  double drawn = 0.0, dropped = 0.0;
+  std::size_t prev = raw.samples.size();
+  for (std::size_t i = 0; i < raw.samples.size(); ++i) {
+    if (!allFinite(raw.samples[i].p)) continue;
+    if (prev < raw.samples.size()) {
+      const double step = (raw.samples[i].p - raw.samples[prev].p).norm();
+      drawn += step;
+      if (out[i] || out[prev]) dropped += step;
+    }
+    prev = i;
+  }
+  return drawn > 0.0 ? dropped / drawn : 0.0;
+}
 
 /// Length scales of a stroke, measured once after the outlier test.
 struct Scales {
@@ -619,6 +641,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   for (std::size_t i = 0; i < samples; ++i) {
     if (!allFinite(raw.samples[i].p)) {
       ++result.removed_invalid;
+      result.left_out.push_back({i, LeftOutReason::kNonFinite});
       continue;
     }
     finite.push_back(raw.samples[i].p);
@@ -633,9 +656,11 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     }
   const double duplicate_distance = kDuplicateTolerance * boundingBoxDiagonal(finite);
   Points pts;
+  pts.left_out = &result.left_out;
   for (std::size_t i = 0; i < finite.size(); ++i) {
     if (!pts.p.empty() && (finite[i] - pts.p.back()).norm() <= duplicate_distance) {
       ++result.removed_duplicates;
+      result.left_out.push_back({finite_source[i], LeftOutReason::kDuplicate});
       continue;
     }
     pts.p.push_back(finite[i]);
@@ -644,6 +669,9 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   auto publish = [&] {
     result.points = pts.p;
     result.source = pts.src;
+    std::sort(result.left_out.begin(), result.left_out.end(),
+              [](const LeftOutPoint& a, const LeftOutPoint& b) { return a.sample < b.sample; });
+    result.left_out_fraction = leftOutFraction(raw, result.left_out);
   };
   if (pts.size() < 3) {
     publish();
@@ -666,7 +694,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
       if ((pts.p[j + 1] - pts.p[j]).norm() > jump) dropped = j + 1;
     }
     if (dropped > 0 && collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(dropped), pts.p.end()))) dropped = 0;
-    pts.dropFront(dropped);
+    pts.dropFront(dropped, LeftOutReason::kPenDownOutlier);
     result.trimmed_start += dropped;
   }
 
@@ -674,8 +702,8 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   auto close = [&](const Seam& seam) {
     result.closed = true;
     result.removed_overlap += seam.first + (pts.size() - seam.end);
-    pts.keepFront(seam.end);
-    pts.dropFront(seam.first);
+    pts.keepFront(seam.end, LeftOutReason::kOverlap);
+    pts.dropFront(seam.first, LeftOutReason::kOverlap);
   };
   Scales scales = measureScales(pts.p, false, options);
   const std::size_t measured = pts.size();  // (points are only ever cut off: the same count, the same points)
@@ -693,14 +721,14 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     if (start > 0) {
       limits.max_length -= arcLengths(pts.p)[start];
       limits.max_points -= start;
-      pts.dropFront(start);
+      pts.dropFront(start, LeftOutReason::kStartHook);
       result.trimmed_start += start;
     }
     const std::vector<Vec2> reversed(pts.p.rbegin(), pts.p.rend());
     std::size_t end = startHook(reversed, drawn_length, scales, limits, options);
     if (end > 0 && collinear(std::vector<Vec2>(pts.p.begin(), pts.p.end() - static_cast<std::ptrdiff_t>(end)))) end = 0;
     if (end > 0) {
-      pts.keepFront(pts.size() - end);
+      pts.keepFront(pts.size() - end, LeftOutReason::kEndHook);
       result.trimmed_end += end;
     }
     if ((start > 0 || end > 0) && options.detect_closed) {
@@ -737,6 +765,18 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     std::sort(result.corners.begin(), result.corners.end());
   }
   return result;
+}
+
+const char* toString(LeftOutReason reason) {
+  switch (reason) {
+    case LeftOutReason::kNonFinite: return "not a finite number";
+    case LeftOutReason::kDuplicate: return "duplicate";
+    case LeftOutReason::kPenDownOutlier: return "pen-down outlier";
+    case LeftOutReason::kStartHook: return "pen-down hook";
+    case LeftOutReason::kEndHook: return "pen-up hook";
+    case LeftOutReason::kOverlap: return "closing overlap";
+  }
+  return "unknown";
 }
 
 }  // namespace la

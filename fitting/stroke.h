@@ -107,6 +107,15 @@ struct CleanupOptions {
   bool assume_closed = false;
 };
 
+/// Why the clean-up left a raw sample out of the points to fit.
+enum class LeftOutReason { kNonFinite, kDuplicate, kPenDownOutlier, kStartHook, kEndHook, kOverlap };
+const char* toString(LeftOutReason reason);
+
+struct LeftOutPoint {
+  std::size_t sample = 0;  // index in the raw stroke
+  LeftOutReason why = LeftOutReason::kDuplicate;
+};
+
 struct CleanStroke {
   std::vector<Vec2> points;          // the points to fit, in order
   std::vector<std::size_t> source;   // index of each point in the raw stroke
@@ -124,6 +133,12 @@ struct CleanStroke {
   std::size_t removed_overlap = 0;   // raw samples cut where a closed stroke overlaps its start
   std::size_t removed_invalid = 0;   // NaN / infinite samples dropped
   std::size_t removed_duplicates = 0;
+  /// Every raw sample left out, in raw order, with why.
+  std::vector<LeftOutPoint> left_out;
+  /// The fraction of the drawn length (the raw stroke's finite polyline) that the steps
+  /// touching a left-out sample span (a duplicate spans nothing): what the curve does not
+  /// claim to follow.
+  double left_out_fraction = 0.0;
   double diagonal = 0.0;             // bounding-box diagonal of `points`
   // Every raw sample is accounted for exactly once:
   // samples = points + trimmed_start + trimmed_end + removed_overlap + removed_invalid

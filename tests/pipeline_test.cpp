@@ -1425,3 +1425,37 @@ TEST(SegmentAlpha, ASegmentTurningMoreThanPiHasNoControlTriangle) {
 
 }  // namespace
 }  // namespace la
+
+namespace la {
+namespace {
+
+// Nothing is dropped silently: every sample the clean-up leaves out is listed with why,
+// the fraction of the drawn length they span is measured (and warned above 5%), and the
+// deviation is measured over all samples as well as over the kept ones.
+TEST(PipelineLeftOut, EverySampleLeftOutIsListedWithWhy) {
+  std::vector<Vec2> arc;
+  for (int i = 0; i <= 60; ++i) arc.push_back(Vec2(100.0 * std::cos(0.02 * i), 100.0 * std::sin(0.02 * i)));
+  Stroke stroke = strokeOf(arc);
+  // a pen-down outlier 40 units before the stroke (its steps are 2), a duplicate and a NaN
+  stroke.samples.insert(stroke.samples.begin(), StrokeSample{arc.front() + Vec2(0.0, -40.0)});
+  stroke.samples.insert(stroke.samples.begin() + 10, stroke.samples[9]);
+  stroke.samples.insert(stroke.samples.begin() + 20, StrokeSample{Vec2(NAN, 0.0)});
+  const FitResult r = fitStroke(stroke);
+  std::map<std::size_t, LeftOutReason> listed;
+  for (const LeftOutPoint& l : r.cleaned.left_out) listed[l.sample] = l.why;
+  ASSERT_EQ(listed.size(), 3u) << describeFit(r);
+  EXPECT_EQ(listed[0], LeftOutReason::kPenDownOutlier);
+  EXPECT_EQ(listed[10], LeftOutReason::kDuplicate);
+  EXPECT_EQ(listed[20], LeftOutReason::kNonFinite);
+  EXPECT_EQ(r.cleaned.points.size() + r.cleaned.left_out.size(), stroke.samples.size());
+  // the outlier's step is 40 of about 160 drawn
+  EXPECT_NEAR(r.cleaned.left_out_fraction, 40.0 / (40.0 + 120.0), 0.01);
+  EXPECT_TRUE(std::any_of(r.warnings.begin(), r.warnings.end(),
+                          [](const std::string& w) { return w.find("leaves out 3 samples") != std::string::npos; }))
+      << describeFit(r);
+  EXPECT_LE(r.quality.max_dev, r.tolerance);
+  EXPECT_GT(r.max_dev_all_points, 30.0);  // the outlier, about 40 from the arc's start
+}
+
+}  // namespace
+}  // namespace la

@@ -119,6 +119,13 @@ void expectConsistent(const Stroke& raw, const CleanStroke& c) {
                                     c.removed_invalid + c.removed_duplicates);
   ASSERT_EQ(c.points.size(), c.source.size());
   ASSERT_GE(c.points.size(), 3u);
+  // every raw sample either kept or listed as left out, once
+  std::vector<int> seen(raw.samples.size(), 0);
+  for (std::size_t s : c.source) ++seen[s];
+  for (const LeftOutPoint& l : c.left_out) ++seen[l.sample];
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; })) << "a sample kept twice, or lost";
+  EXPECT_GE(c.left_out_fraction, 0.0);
+  EXPECT_LE(c.left_out_fraction, 1.0);
   std::size_t descents = 0;
   for (std::size_t i = 0; i < c.points.size(); ++i) {
     ASSERT_LT(c.source[i], raw.samples.size());

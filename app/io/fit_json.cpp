@@ -54,7 +54,12 @@ nlohmann::json fitResultToJson(const FitResult& r, const Stroke& raw, bool with_
   quality["lcg_r2"] = r2;
   quality["tolerance"] = r.tolerance;
   quality["tolerance_requested"] = r.requested_tolerance;  // (below `tolerance` where the noise floor raised it)
+  quality["max_dev_all_points"] = r.max_dev_all_points;   // (max_dev: over the points the clean-up kept)
+  quality["left_out_fraction"] = r.cleaned.left_out_fraction;
+  nlohmann::json left_out = nlohmann::json::array();
+  for (const LeftOutPoint& l : r.cleaned.left_out) left_out.push_back({{"sample", l.sample}, {"why", toString(l.why)}});
   j["quality"] = quality;
+  j["left_out"] = left_out;
   j["timings_ms"] = {{"cleanup", r.timings.cleanup_ms},   {"smoothing", r.timings.smoothing_ms},
                      {"segmentation", r.timings.segmentation_ms}, {"alpha", r.timings.alpha_ms},
                      {"g2", r.timings.g2_ms},             {"polish", r.timings.polish_ms},
