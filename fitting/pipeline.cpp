@@ -45,11 +45,13 @@ void fitStraight(FitResult& r) {
 // The deviation over every finite raw sample, and a warning where the samples the
 // clean-up left out span more than kLeftOutWarning of the drawn length.
 void measureLeftOut(FitResult& r, const Stroke& stroke) {
-  std::vector<Vec2> all;
-  for (const StrokeSample& s : stroke.samples)
-    if (allFinite(s.p)) all.push_back(s.p);
-  r.max_dev_all_points = 0.0;
-  for (double d : distancesToCurve(r.curve, all, r.quality.diagonal)) r.max_dev_all_points = std::max(r.max_dev_all_points, d);
+  // (a duplicate lies on a kept point, a non-finite sample has no distance: only the
+  // other samples left out can lie further)
+  r.max_dev_all_points = r.quality.max_dev;
+  std::vector<Vec2> others;
+  for (const LeftOutPoint& l : r.cleaned.left_out)
+    if (l.why != LeftOutReason::kDuplicate && l.why != LeftOutReason::kNonFinite) others.push_back(stroke.samples[l.sample].p);
+  for (double d : distancesToCurve(r.curve, others, r.quality.diagonal)) r.max_dev_all_points = std::max(r.max_dev_all_points, d);
   if (!(r.cleaned.left_out_fraction > kLeftOutWarning)) return;
   std::map<std::string, int> reasons;
   for (const LeftOutPoint& l : r.cleaned.left_out) ++reasons[toString(l.why)];
