@@ -478,13 +478,23 @@ void MainWindow::documentChanged() {
   const QualityFigures& q = last->quality;
   const bool refining = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
                                     [](const DocumentStroke& s) { return s.provisional; });
-  m_status->setText(QString("segments %1 · max deviation %2 (%3% of size) · g2 gap %4 · extrema %5 · fit %6 ms%7")
+  // (what the clean-up left out, said where it is more than duplicates)
+  const auto& left_out = last->cleaned.left_out;
+  const auto duplicates = std::count_if(left_out.begin(), left_out.end(),
+                                        [](const LeftOutPoint& l) { return l.why == LeftOutReason::kDuplicate; });
+  const QString left = static_cast<std::size_t>(duplicates) == left_out.size()
+                           ? QString()
+                           : QString(" · %1 samples left out (%2% of the length)")
+                                 .arg(left_out.size() - static_cast<std::size_t>(duplicates))
+                                 .arg(100.0 * last->cleaned.left_out_fraction, 0, 'f', 0);
+  m_status->setText(QString("segments %1 · max deviation %2 (%3% of size) · g2 gap %4 · extrema %5 · fit %6 ms%7%8")
                         .arg(q.segments)
                         .arg(q.max_dev, 0, 'g', 3)
                         .arg(100.0 * q.max_dev / std::max(q.diagonal, 1e-300), 0, 'f', 2)
                         .arg(q.g2_gap, 0, 'g', 2)
                         .arg(q.extrema)
                         .arg(last->timings.total_ms, 0, 'f', 2)
+                        .arg(left)
                         .arg(refining ? " · fitting the chain to the points…" : ""));
 }
 

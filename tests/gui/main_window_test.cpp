@@ -259,6 +259,18 @@ TEST_F(MainWindowTest, AnImportedProfileKeepsItsRoundNoseAcrossSaveAndReopen) {
   EXPECT_EQ(other.document().strokes()[0].fit->quality.corners, 1);
 }
 
+// The status bar says what the clean-up left out of the last stroke: an MMG stroke whose
+// first point lies far before the rest (a pen-down outlier).
+TEST_F(MainWindowTest, TheStatusBarSaysWhatTheCleanUpLeftOut) {
+  ASSERT_TRUE(window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/mmg_s10_stylus_medium/csv/10-stylus-medium-N-01.csv"));
+  window->finishBackgroundFits();
+  QString text;
+  for (const QLabel* label : window->statusBar()->findChildren<QLabel*>()) text += label->text();
+  const FitResult& fit = lastFit();
+  ASSERT_FALSE(fit.cleaned.left_out.empty());
+  EXPECT_TRUE(text.contains("samples left out")) << text.toStdString();
+}
+
 TEST_F(MainWindowTest, ImportEveryFileTypeAndExportEveryFormat) {
   const QString data = QString(LAFAIR_SHARED_DATA_DIR);
   for (const char* f : {"/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv", "/curves/airfoils/clark-y.dat",
