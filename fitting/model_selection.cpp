@@ -470,7 +470,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     // (a simple closed curve that is not a circle has at least 4 extrema: the four-vertex
     // theorem)
     const bool one_closed_part = closed && out.corners.empty();
-    for (int round = 0;; ++round) {
+    for (;;) {
       const std::vector<LaSegment> segs = out.fit.segments;
       const std::size_t n = segs.size();
       // The extrema of the parts over the cap, the weakest first: the smaller curvature
