@@ -144,6 +144,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_canvas = new Canvas;
   m_canvas->setDocument(&m_document);
   setCentralWidget(m_canvas);
+  // (the canvas has the focus at start, not the first field of a dock: a key typed before
+  // anything is clicked must not edit the tolerance)
+  m_canvas->setFocusPolicy(Qt::StrongFocus);
+  m_canvas->setFocus();
 
   m_plot = new CurvaturePlot;
   auto* plot_dock = new QDockWidget("Curvature plot", this);
@@ -683,7 +687,11 @@ void MainWindow::buildMenus() {
   QAction* undo = m_undo->createUndoAction(this, "&Undo");
   undo->setShortcut(QKeySequence::Undo);
   QAction* redo = m_undo->createRedoAction(this, "&Redo");
-  redo->setShortcut(QKeySequence::Redo);
+  // (the platform's Redo keys, and Ctrl+Shift+Z and Ctrl+Y where they are not among them)
+  QList<QKeySequence> redo_keys = QKeySequence::keyBindings(QKeySequence::Redo);
+  for (const QKeySequence& key : {QKeySequence("Ctrl+Shift+Z"), QKeySequence("Ctrl+Y")})
+    if (!redo_keys.contains(key)) redo_keys.append(key);
+  redo->setShortcuts(redo_keys);
   edit->addAction(undo);
   edit->addAction(redo);
 

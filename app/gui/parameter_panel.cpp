@@ -22,11 +22,15 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_tolerance->setDecimals(2);
   m_tolerance->setSingleStep(0.05);
   m_tolerance->setSuffix(" % of size");
+  // (typed values apply on Enter or leaving the field, not at every keystroke: "1.25"
+  // passed through 1 and refitted, one undo step a key; the arrows still apply at once)
+  m_tolerance->setKeyboardTracking(false);
   m_tolerance->setToolTip("Largest distance of the curve from the points, relative to the stroke's bounding-box diagonal");
   form->addRow("Tolerance", m_tolerance);
   m_max_extrema = new QSpinBox;
   m_max_extrema->setRange(-1, 50);
   m_max_extrema->setSpecialValueText("all significant");
+  m_max_extrema->setKeyboardTracking(false);
   m_max_extrema->setToolTip("Simplify: keep at most this many curvature extrema");
   form->addRow("Max extrema", m_max_extrema);
   m_g2 = new QComboBox;
@@ -38,6 +42,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_threshold->setRange(-12, -2);
   m_threshold->setDecimals(1);
   m_threshold->setPrefix("1e");
+  m_threshold->setKeyboardTracking(false);
   m_threshold->setToolTip("Relative curvature gap allowed at a joint");
   form->addRow("G2 threshold", m_threshold);
   m_corners = new QCheckBox("keep sharp corners");

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <QAction>
 #include <QApplication>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QPointingDevice>
 #include <QSemaphore>
@@ -86,6 +88,32 @@ class MainWindowTest : public ::testing::Test {
   std::unique_ptr<MainWindow> window;
   QTemporaryDir dir;
 };
+
+// Fields that behave (issue 17, part 4): no field has the focus at start, the canvas has
+// it; a tolerance typed into its field applies on Enter, not at every keystroke ("1.25"
+// once passed through 1), as one undo step; Ctrl+Shift+Z and Ctrl+Y redo.
+TEST_F(MainWindowTest, TypedToleranceAppliesOnEnterAsOneUndoStep) {
+  EXPECT_EQ(window->focusWidget(), window->canvas());
+  QDoubleSpinBox* tolerance = nullptr;
+  for (QDoubleSpinBox* box : window->findChildren<QDoubleSpinBox*>())
+    if (box->suffix() == " % of size") tolerance = box;
+  ASSERT_NE(tolerance, nullptr);
+  const double before = window->document().options().tolerance_fraction;
+  const int steps = window->undoStack()->count();
+  tolerance->setFocus();
+  tolerance->selectAll();
+  QTest::keyClicks(tolerance, "1.25");
+  EXPECT_EQ(window->document().options().tolerance_fraction, before) << "applied while typing";
+  QTest::keyClick(tolerance, Qt::Key_Return);
+  EXPECT_NEAR(window->document().options().tolerance_fraction, 0.0125, 1e-12);
+  EXPECT_EQ(window->undoStack()->count(), steps + 1);
+  QAction* redo = nullptr;
+  for (QAction* a : window->findChildren<QAction*>())
+    if (a->text().contains("Redo")) redo = a;
+  ASSERT_NE(redo, nullptr);
+  EXPECT_TRUE(redo->shortcuts().contains(QKeySequence("Ctrl+Shift+Z")));
+  EXPECT_TRUE(redo->shortcuts().contains(QKeySequence("Ctrl+Y")));
+}
 
 TEST_F(MainWindowTest, MouseStrokeIsFittedG2) {
   drawWithMouse(window->canvas(), wave());
