@@ -1,6 +1,7 @@
 #include "app/gui/main_window.h"
 
 #include <QAction>
+#include <QCloseEvent>
 #include <QDateTime>
 #include <QElapsedTimer>
 #include <QHBoxLayout>
@@ -362,7 +363,9 @@ void MainWindow::refreshRecentMenu() {
   if (!m_recent) return;
   m_recent->clear();
   for (const QString& f : QSettings().value("recent").toStringList())
-    m_recent->addAction(QFileInfo(f).fileName(), this, [this, f] { openFile(f); });
+    m_recent->addAction(QFileInfo(f).fileName(), this, [this, f] {
+      if (keepOrDiscardChanges("opening another sketch")) openFile(f);
+    });
   m_recent->setEnabled(!m_recent->isEmpty());
 }
 
@@ -389,7 +392,35 @@ bool MainWindow::offerRecovery() {
 
 MainWindow::~MainWindow() {
   for (auto* watcher : m_background) watcher->waitForFinished();  // (their threads hold copies only)
-  QFile::remove(autosavePath() + ".running");
+  // (the crash-recovery marker goes only where nothing unsaved is lost: a clean save or
+  // the user's own discard; else the next start offers the autosave)
+  if (m_undo->isClean() || m_discarded) QFile::remove(autosavePath() + ".running");
+}
+
+bool MainWindow::keepOrDiscardChanges(const QString& before) {
+  if (m_undo->isClean()) return true;
+  QMessageBox::StandardButton answer = m_unsaved_answer;
+  if (!qEnvironmentVariableIsSet("LAFAIR_NO_DIALOGS")) {
+    const QString what = QString("The sketch has unsaved changes (%1 strokes, %2 constructions, the last: %3). "
+                                 "Save them before %4?")
+                             .arg(m_document.strokes().size())
+                             .arg(m_document.constructions().size())
+                             .arg(m_undo->undoText().isEmpty() ? "an edit" : m_undo->undoText())
+                             .arg(before);
+    answer = QMessageBox::question(this, "lafair", what, QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel,
+                                   QMessageBox::Save);
+  }
+  if (answer == QMessageBox::Discard) return m_discarded = true;
+  if (answer != QMessageBox::Save) return false;
+  QString path = m_path;
+  if (path.isEmpty() && !qEnvironmentVariableIsSet("LAFAIR_NO_DIALOGS"))
+    path = QFileDialog::getSaveFileName(this, "Save sketch", {}, "lafair sketches (*.json)");
+  return !path.isEmpty() && saveFile(path);
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  if (keepOrDiscardChanges("quitting")) event->accept();
+  else event->ignore();
 }
 
 void MainWindow::fitInBackground(std::size_t index) {
@@ -635,12 +666,14 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
 void MainWindow::buildMenus() {
   QMenu* file = menuBar()->addMenu("&File");
   file->addAction("&New", QKeySequence::New, this, [this] {
+    if (!keepOrDiscardChanges("starting a new sketch")) return;
     m_document.clear();
     m_undo->clear();
     m_path.clear();
     documentChanged();
   });
   file->addAction("&Open…", QKeySequence::Open, this, [this] {
+    if (!keepOrDiscardChanges("opening another sketch")) return;
     const QString p = QFileDialog::getOpenFileName(this, "Open sketch", {}, "lafair sketches (*.json)");
     if (!p.isEmpty()) openFile(p);
   });
@@ -656,8 +689,8 @@ void MainWindow::buildMenus() {
   m_recent = file->addMenu("Open &recent");
   refreshRecentMenu();
   file->addAction("Recover &autosave", this, [this] {
-    if (QFileInfo::exists(autosavePath())) openFile(autosavePath());
-    else showError("no autosaved sketch");
+    if (!QFileInfo::exists(autosavePath())) showError("no autosaved sketch");
+    else if (keepOrDiscardChanges("opening the autosaved sketch")) openFile(autosavePath());
   });
   file->addSeparator();
   file->addAction("Import &background image…", this, [this] {

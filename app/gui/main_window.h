@@ -6,6 +6,7 @@
 
 #include <QFutureWatcher>
 #include <QMainWindow>
+#include <QMessageBox>
 #include <QString>
 #include <atomic>
 #include <cstdint>
@@ -66,6 +67,12 @@ class MainWindow : public QMainWindow {
   /// Replaces construction `index` by `after` as one undoable step (`before` is what undo restores).
   void editConstruction(int index, const Construction& before, const Construction& after, const QString& what);
   void showMessage(const QString& what);      // in the status bar
+  /// Before work is replaced (New, Open, Quit, closing the window): true if there are no
+  /// unsaved changes, or the user saved them or chose to discard them; false to cancel.
+  /// Asks Save / Discard / Cancel, naming what would be lost; under LAFAIR_NO_DIALOGS it
+  /// takes the answer set by answerUnsavedChanges (Discard unless set).
+  bool keepOrDiscardChanges(const QString& before);
+  void answerUnsavedChanges(QMessageBox::StandardButton answer) { m_unsaved_answer = answer; }
   /// A drawn stroke shows its stages 1-6 fit at pen-up; stage 7 runs on a worker thread
   /// and replaces it when done (a hard stroke takes a few hundred ms). This waits for
   /// those still running and takes their results (saving, exporting and tests use it).
@@ -77,6 +84,9 @@ class MainWindow : public QMainWindow {
   /// Background fits dropped before they ran because a newer one for the same stroke
   /// was requested (rapid parameter changes).
   int supersededBackgroundFits() const { return m_superseded_fits; }
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
 
  private:
   struct BackgroundFit {
@@ -112,6 +122,8 @@ class MainWindow : public QMainWindow {
   QTimer* m_autosave = nullptr;
   QString m_path;
   bool m_dirty = false;
+  QMessageBox::StandardButton m_unsaved_answer = QMessageBox::Discard;  // (LAFAIR_NO_DIALOGS)
+  bool m_discarded = false;  // the user chose to lose the unsaved changes (the recovery marker may go)
   std::vector<QFutureWatcher<BackgroundFit>*> m_background;  // running, in start order
   // Per stroke id, the flag of its newest background fit; set when a newer one is asked for.
   std::map<std::uint64_t, std::shared_ptr<std::atomic<bool>>> m_newest_fit;

@@ -9,6 +9,7 @@
 #include <QApplication>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QFileInfo>
 #include <QPointingDevice>
 #include <QSemaphore>
 #include <QThreadPool>
@@ -17,6 +18,7 @@
 #include <QTemporaryDir>
 #include <QSlider>
 #include <QLabel>
+#include <QMessageBox>
 #include <QStatusBar>
 #include <QTest>
 #include <QUndoStack>
@@ -113,6 +115,47 @@ TEST_F(MainWindowTest, TypedToleranceAppliesOnEnterAsOneUndoStep) {
   ASSERT_NE(redo, nullptr);
   EXPECT_TRUE(redo->shortcuts().contains(QKeySequence("Ctrl+Shift+Z")));
   EXPECT_TRUE(redo->shortcuts().contains(QKeySequence("Ctrl+Y")));
+}
+
+// Never lose work (issue 17, part 5): New and closing the window ask before unsaved
+// changes go (Save / Discard / Cancel); Cancel keeps everything, Save writes the sketch
+// first, Discard goes on. The crash-recovery marker goes only after a clean save or an
+// explicit discard.
+TEST_F(MainWindowTest, NewAndCloseAskBeforeUnsavedWorkIsLost) {
+  QAction* new_sketch = nullptr;
+  for (QAction* a : window->findChildren<QAction*>())
+    if (a->text() == "&New") new_sketch = a;
+  ASSERT_NE(new_sketch, nullptr);
+  window->offerRecovery();  // (lays the crash-recovery marker, as at start)
+  const QString marker = window->autosavePath() + ".running";
+  ASSERT_TRUE(QFileInfo::exists(marker));
+
+  drawWithMouse(window->canvas(), wave());
+  window->answerUnsavedChanges(QMessageBox::Cancel);
+  new_sketch->trigger();
+  EXPECT_EQ(window->document().strokes().size(), 1u) << "Cancel lost the stroke";
+  EXPECT_FALSE(window->close()) << "Cancel closed the window";
+
+  const QString path = dir.filePath("kept.lafair.json");
+  ASSERT_TRUE(window->saveFile(path));
+  drawWithMouse(window->canvas(), wave(70));
+  window->answerUnsavedChanges(QMessageBox::Save);
+  new_sketch->trigger();
+  EXPECT_TRUE(window->document().strokes().empty());
+  MainWindow reopened;
+  ASSERT_TRUE(reopened.openFile(path));
+  EXPECT_EQ(reopened.document().strokes().size(), 2u) << "Save did not write the second stroke first";
+
+  drawWithMouse(window->canvas(), wave());
+  window.reset();  // unsaved and not discarded: the marker stays for the next start
+  EXPECT_TRUE(QFileInfo::exists(marker));
+  window = std::make_unique<MainWindow>();
+  drawWithMouse(window->canvas(), wave());
+  window->answerUnsavedChanges(QMessageBox::Discard);
+  EXPECT_TRUE(window->close());
+  window.reset();
+  EXPECT_FALSE(QFileInfo::exists(marker)) << "an explicit discard ends the session cleanly";
+  window = std::make_unique<MainWindow>();
 }
 
 TEST_F(MainWindowTest, MouseStrokeIsFittedG2) {
