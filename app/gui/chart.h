@@ -5,8 +5,28 @@
 #include <QPainter>
 #include <QString>
 #include <QWidget>
+#include <cmath>
+#include <vector>
 
 namespace la::gui {
+
+/// A round tick step for a range: 1, 2 or 5 times a power of ten, about 5 ticks.
+inline double tickStep(double range) {
+  const double raw = range / 5.0;
+  const double p = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double m : {1.0, 2.0, 5.0})
+    if (raw <= m * p) return m * p;
+  return 10.0 * p;
+}
+
+/// The round values in [lo, hi] a tick step apart (multiples of tickStep(hi - lo)).
+inline std::vector<double> roundTicks(double lo, double hi) {
+  std::vector<double> out;
+  if (!(hi > lo)) return out;
+  const double step = tickStep(hi - lo);
+  for (double k = std::ceil(lo / step); k * step <= hi + 1e-9 * step; ++k) out.push_back(k * step);
+  return out;
+}
 
 /// Clears the widget, writes the x label under `area` and the y label (turned) left of
 /// it; leaves the pen black.

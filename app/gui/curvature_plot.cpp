@@ -12,15 +12,6 @@ namespace {
 constexpr int kSamplesPerSegment = 64;
 constexpr int kSplineSamples = 400;
 
-// "Nice" tick step for a range (1, 2 or 5 times a power of ten, about 5 ticks).
-double tickStep(double range) {
-  const double raw = range / 5.0;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0})
-    if (raw <= m * p) return m * p;
-  return 10.0 * p;
-}
-
 }  // namespace
 
 CurvaturePlot::CurvaturePlot(QWidget* parent) : QWidget(parent) { setMinimumSize(280, 160); }

@@ -60,11 +60,11 @@ void LcgPlot::paintEvent(QPaintEvent*) {
   QFont small = font();
   small.setPointSizeF(small.pointSizeF() * 0.8);
   p.setFont(small);
-  for (int i = 0; i <= 4; ++i) {
-    const double x = x0 + (x1 - x0) * i / 4, y = y0 + (y1 - y0) * i / 4;
+  // (ticks at round values: quarters of the range read 2.38, 2.6, 2.82)
+  for (double x : roundTicks(x0, x1))
     p.drawText(QRectF(map(x, y0).x() - 30, area.bottom() + 2, 60, 14), Qt::AlignCenter, QString::number(x, 'g', 3));
+  for (double y : roundTicks(y0, y1))
     p.drawText(QRectF(area.left() - 50, map(x0, y).y() - 7, 46, 14), Qt::AlignRight | Qt::AlignVCenter, QString::number(y, 'g', 3));
-  }
   p.setPen(Qt::NoPen);
   p.setBrush(QColor(150, 150, 150));
   for (const QPointF& q : m_data) p.drawEllipse(map(q.x(), q.y()), 2.2, 2.2);

@@ -25,6 +25,7 @@
 #include <cmath>
 
 #include "app/gui/canvas.h"
+#include "app/gui/chart.h"
 #include "app/gui/main_window.h"
 #include "app/gui/parameter_panel.h"
 
@@ -156,6 +157,24 @@ TEST_F(MainWindowTest, NewAndCloseAskBeforeUnsavedWorkIsLost) {
   window.reset();
   EXPECT_FALSE(QFileInfo::exists(marker)) << "an explicit discard ends the session cleanly";
   window = std::make_unique<MainWindow>();
+}
+
+// The charts' ticks sit at round values (issue 17, part 3: the LCG plot read 2.38, 2.6,
+// 2.82): multiples of 1, 2 or 5 times a power of ten, about five over the range.
+TEST(ChartTicks, AreRoundValuesInsideTheRange) {
+  for (const auto& [lo, hi] : {std::pair{2.16, 3.04}, std::pair{-0.37, 12.9}, std::pair{-3e-5, 7e-5}, std::pair{100.0, 100.5}}) {
+    const std::vector<double> ticks = roundTicks(lo, hi);
+    ASSERT_GE(ticks.size(), 3u) << lo << " " << hi;
+    EXPECT_LE(ticks.size(), 11u);
+    const double step = tickStep(hi - lo);
+    const double mantissa = step / std::pow(10.0, std::floor(std::log10(step)));
+    EXPECT_TRUE(std::abs(mantissa - 1) < 1e-9 || std::abs(mantissa - 2) < 1e-9 || std::abs(mantissa - 5) < 1e-9) << step;
+    for (double t : ticks) {
+      EXPECT_GE(t, lo - 1e-12);
+      EXPECT_LE(t, hi + 1e-12);
+      EXPECT_NEAR(t / step, std::round(t / step), 1e-9) << t;
+    }
+  }
 }
 
 TEST_F(MainWindowTest, MouseStrokeIsFittedG2) {
