@@ -92,8 +92,9 @@ std::string Document::moveApex(std::size_t stroke, int piece, const Vec2& apex) 
       [&](DocumentStroke& s) { s.apex_overrides[piece] = apex; });
 }
 
-void Document::restoreStroke(std::size_t index, DocumentStroke stroke) {
-  if (index < strokes_.size()) strokes_[index] = std::move(stroke);
+void Document::restoreStroke(std::size_t index, DocumentStroke stroke, bool insert) {
+  if (insert) strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(stroke));
+  else if (index < strokes_.size()) strokes_[index] = std::move(stroke);
 }
 
 std::size_t Document::addStroke(const Stroke& raw) {

@@ -61,8 +61,9 @@ class Document {
   std::string moveJoint(std::size_t stroke, int joint, const Vec2& position);
   /// Moves the apex of a segment's control triangle (its end tangents follow).
   std::string moveApex(std::size_t stroke, int piece, const Vec2& apex);
-  /// Puts a stroke back exactly as it was (for undo; no refit).
-  void restoreStroke(std::size_t index, DocumentStroke stroke);
+  /// Puts a stroke back exactly as it was (for undo; no refit): in place of stroke
+  /// `index`, or inserted there with `insert` (undoing its removal).
+  void restoreStroke(std::size_t index, DocumentStroke stroke, bool insert = false);
   void clear();
 
   /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},

@@ -67,6 +67,26 @@ class AddStrokeCommand : public QUndoCommand {
   std::size_t m_index = 0;
 };
 
+// Removes a stroke; undo puts it back as it was (fit, the user's edits), no refit.
+class DeleteStrokeCommand : public QUndoCommand {
+ public:
+  DeleteStrokeCommand(MainWindow* w, std::size_t index)
+      : QUndoCommand("delete stroke"), m_window(w), m_index(index), m_stroke(w->document().strokes()[index]) {}
+  void redo() override {
+    m_window->document().removeStroke(m_index);
+    m_window->documentChanged();
+  }
+  void undo() override {
+    m_window->document().restoreStroke(m_index, m_stroke, /*insert=*/true);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  std::size_t m_index;
+  DocumentStroke m_stroke;
+};
+
 class SetOptionsCommand : public QUndoCommand {
  public:
   SetOptionsCommand(MainWindow* w, FitOptions before, FitOptions after)
@@ -533,6 +553,14 @@ void MainWindow::documentChanged() {
                         .arg(refining ? " · fitting the chain to the points…" : ""));
 }
 
+void MainWindow::deleteSelectedStroke() {
+  if (m_selected_stroke < 0 || m_selected_stroke >= static_cast<int>(m_document.strokes().size())) {
+    showMessage("right-click a stroke to select it, then Delete removes it");
+    return;
+  }
+  m_undo->push(new DeleteStrokeCommand(this, static_cast<std::size_t>(m_selected_stroke)));
+}
+
 void MainWindow::showMessage(const QString& what) { m_status->setText(what); }
 
 void MainWindow::showError(const QString& what) {
@@ -727,6 +755,7 @@ void MainWindow::buildMenus() {
   redo->setShortcuts(redo_keys);
   edit->addAction(undo);
   edit->addAction(redo);
+  edit->addAction("&Delete stroke", QKeySequence::Delete, this, [this] { deleteSelectedStroke(); });
 
   QMenu* construct = menuBar()->addMenu("&Construct");
   for (ConstructionKind kind : {ConstructionKind::kSegment, ConstructionKind::kCompound, ConstructionKind::kHermite,

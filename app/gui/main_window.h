@@ -57,6 +57,8 @@ class MainWindow : public QMainWindow {
 
   /// Records a stroke (as the canvas does on pen-up), undoably.
   void addStroke(const Stroke& stroke);
+  /// Removes the selected stroke (right-click selects), undoably; says so where none is.
+  void deleteSelectedStroke();
   /// Called after any change of the document: repaint, plot, status.
   void documentChanged();
   void selectSegment(int stroke, int piece);  // -1, -1: none

@@ -177,6 +177,35 @@ TEST(ChartTicks, AreRoundValuesInsideTheRange) {
   }
 }
 
+// Delete removes the selected stroke (issue 17, part 1, its Delete key), undoably: undo
+// puts it back as it was, fit and all, without a refit.
+TEST_F(MainWindowTest, DeleteRemovesTheSelectedStrokeUndoably) {
+  drawWithMouse(window->canvas(), wave());
+  drawWithMouse(window->canvas(), wave(70));
+  window->finishBackgroundFits();
+  ASSERT_EQ(window->document().strokes().size(), 2u);
+  const FitResult first = *window->document().strokes()[0].fit;
+  const std::uint64_t second = window->document().strokes()[1].id;
+  QAction* remove = nullptr;
+  for (QAction* a : window->findChildren<QAction*>())
+    if (a->text() == "&Delete stroke") remove = a;
+  ASSERT_NE(remove, nullptr);
+  EXPECT_TRUE(remove->shortcuts().contains(QKeySequence(QKeySequence::Delete)));
+  remove->trigger();  // nothing selected: nothing goes
+  EXPECT_EQ(window->document().strokes().size(), 2u);
+  window->selectSegment(0, 0);
+  remove->trigger();
+  ASSERT_EQ(window->document().strokes().size(), 1u);
+  EXPECT_EQ(window->document().strokes()[0].id, second);
+  window->undoStack()->undo();
+  ASSERT_EQ(window->document().strokes().size(), 2u);
+  const FitResult& back = *window->document().strokes()[0].fit;
+  ASSERT_EQ(back.curve.pieces.size(), first.curve.pieces.size());
+  EXPECT_EQ(back.curve.pieces[0].segment.start(), first.curve.pieces[0].segment.start());
+  window->undoStack()->redo();
+  EXPECT_EQ(window->document().strokes().size(), 1u);
+}
+
 TEST_F(MainWindowTest, MouseStrokeIsFittedG2) {
   drawWithMouse(window->canvas(), wave());
   ASSERT_EQ(window->document().strokes().size(), 1u);
