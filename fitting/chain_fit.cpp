@@ -1334,6 +1334,13 @@ std::vector<LaSegment> movedOntoEnds(const std::vector<LaSegment>& segments, con
 
 std::vector<LaSegment> snapToJoints(const std::vector<LaSegment>& segments, bool closed, const Vec2& end,
                                     const G2Options& options, double reach) {
+  if (closed && segments.size() == 1) {
+    // (a closed chain of one segment is a circle: closed exactly at its mean curvature;
+    // no joint is left to rotate)
+    const LaSegment& s = segments.front();
+    const double kappa = 0.5 * (s.kappaStart() + s.kappaEnd());
+    return {LaSegment::arc(2.0 * std::numbers::pi / std::abs(kappa), s.start(), s.theta0(), kappa)};
+  }
   if (!segments.empty()) {
     // A chain that ends there already (the fit closes its exact chain to rounding) stays.
     const LaSegment &first = segments.front(), &last = segments.back();

@@ -161,7 +161,8 @@ Chain chainOfSegments(const std::vector<LaSegment>& segments, bool closed, const
 /// as must `start` and `end`.
 std::vector<LaSegment> movedOntoEnds(const std::vector<LaSegment>& segments, const Vec2& start, const Vec2& end);
 
-/// Makes a nearly closed or nearly corner-ended chain exact. One that is, to 1e-10 of its
+/// Makes a nearly closed or nearly corner-ended chain exact. A closed chain of one segment
+/// becomes the circle of its mean curvature. One that is, to 1e-10 of its
 /// length (and in tangent, closed), comes back as it is. An open chain is scaled and
 /// rotated about its start until its end is at `end`, if that moves no point of it by
 /// more than `reach` (G2 and alphas kept exactly). Otherwise, and for a closed chain:

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <optional>
 
 #include "fitting/model_selection.h"
@@ -156,12 +155,7 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
   const ChainFitResult& polished = selected.fit;
   if (polished.report.status == SolveStatus::kBadInput) return;
   std::vector<LaSegment> segments = polished.segments;
-  if (co.closed && segments.size() == 1) {
-    // (a closed chain of one segment is a circle: closed exactly at its mean curvature)
-    const LaSegment& s = segments.front();
-    const double kappa = 0.5 * (s.kappaStart() + s.kappaEnd());
-    segments = {LaSegment::arc(2.0 * std::numbers::pi / std::abs(kappa), s.start(), s.theta0(), kappa)};
-  } else if (co.closed || co.fix_end) {
+  if (co.closed || co.fix_end) {
     const G2Options g2 = context.g2();
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
