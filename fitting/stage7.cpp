@@ -168,8 +168,10 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }
-  // (a chain closed or snapped onto its corner may have moved: measured again)
-  fit.max_dev = co.closed || co.fix_end ? maxDeviationOf(segments, part.points, diag) : polished.max_distance;
+  // (a chain the snap moved is measured again; one already exact keeps the fit's figure,
+  // saving a distance pass on every part that ends at a corner)
+  const bool moved = segments.size() != polished.segments.size() || segments.back().end() != polished.segments.back().end();
+  fit.max_dev = moved ? maxDeviationOf(segments, part.points, diag) : polished.max_distance;
   fit.warnings.clear();
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
