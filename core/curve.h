@@ -29,4 +29,12 @@ struct Curve {
   bool closed = false;  // the last segment's end joins the first segment's start
 };
 
+/// The chain of `segments` as a curve without corners.
+inline Curve curveOf(const std::vector<LaSegment>& segments, bool closed = false) {
+  Curve c;
+  c.closed = closed;
+  for (const LaSegment& s : segments) c.pieces.push_back({s, false});
+  return c;
+}
+
 }  // namespace la

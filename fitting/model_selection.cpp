@@ -42,9 +42,7 @@ constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
 
 // The chain as a curve, its corners marked.
 Curve curveOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners, bool closed) {
-  Curve c;
-  c.closed = closed;
-  for (const LaSegment& s : chain) c.pieces.push_back({s, false});
+  Curve c = curveOf(chain, closed);
   for (const ChainCorner& k : corners) c.pieces[k.joint].corner = true;
   return c;
 }

@@ -102,10 +102,8 @@ std::vector<std::size_t> turnsAlongLine(const std::vector<Vec2>& points, double 
 }
 
 double maxDeviationOf(const std::vector<LaSegment>& segments, const std::vector<Vec2>& points, double diag) {
-  Curve curve;
-  for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
   double worst = 0.0;
-  for (double d : distancesToCurve(curve, points, diag, kDeviationResolution)) worst = std::max(worst, d);
+  for (double d : distancesToCurve(curveOf(segments), points, diag, kDeviationResolution)) worst = std::max(worst, d);
   return worst;
 }
 

@@ -108,10 +108,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context) {
   const int cap = context.options.segmentation.max_extrema;
   if (cap < 0) return false;
-  Curve curve;
-  curve.closed = closed;
-  for (const LaSegment& s : segments) curve.pieces.push_back({s, false});
-  for (const std::vector<std::size_t>& joints : extremumJoints(curve, context.diagonal))
+  for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(segments, closed), context.diagonal))
     if (static_cast<int>(joints.size()) > cap) return true;
   return false;
 }
@@ -192,10 +189,7 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
   if (part.closed) stroke_length += (part.points.front() - part.points.back()).norm();
   const bool longer = curve_length > kStrayLength * stroke_length;
   if (!longer && tip_allowance == INFINITY) return 0.0;
-  Curve c;
-  c.closed = part.closed;
-  for (const LaSegment& s : segments) c.pieces.push_back({s, false});
-  const double stray = strayFromPoints(c, part.points, diag);
+  const double stray = strayFromPoints(curveOf(segments, part.closed), part.points, diag);
   return longer || stray > tip_allowance ? stray : 0.0;
 }
 

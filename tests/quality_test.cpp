@@ -160,13 +160,6 @@ TEST(StrayFromPoints, HalfCircleOverItsDiameterAndOverItsOwnPoints) {
 constexpr double kClothoid = -1.0;  // alpha: curvature linear in arc length
 constexpr double kPi = std::numbers::pi;
 
-Curve curveOf(const std::vector<LaSegment>& chain, bool closed = false) {
-  Curve c;
-  c.closed = closed;
-  for (const LaSegment& s : chain) c.pieces.push_back({s});
-  return c;
-}
-
 // The chain's own points (its diagonal is the curve's).
 QualityFigures measure(const Curve& curve) {
   std::vector<LaSegment> chain;
