@@ -109,13 +109,9 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   co.max_iterations = kOneSegmentIterations;
   // (each point's foot where its arc length puts it: found from scratch, a point could
   // take its foot on the neighbouring turn of a spiral)
-  std::vector<ChainFoot> feet;
-  double walked = 0.0, walk = 0.0;
-  for (std::size_t i = 1; i < m; ++i) walk += (p[i] - p[i - 1]).norm();
-  for (std::size_t i = 0; i < m; ++i) {
-    if (i > 0) walked += (p[i] - p[i - 1]).norm();
-    feet.push_back({0, walked / walk});
-  }
+  std::vector<ChainFoot> feet(m, {0, 0.0});
+  for (std::size_t i = 1; i < m; ++i) feet[i].u = feet[i - 1].u + (p[i] - p[i - 1]).norm();
+  for (ChainFoot& f : feet) f.u /= feet.back().u;
   // (each start as it is, then with its end shot onto the last point: a spiral's far
   // turns follow its end, but a shot from a poor start curvature bends the law wrongly)
   std::vector<LaSegment> tries;
