@@ -453,7 +453,7 @@ void MainWindow::fitInBackground(std::size_t index) {
   if (auto& newest = m_newest_fit[s.id]) newest->store(true);
   m_newest_fit[s.id] = superseded;
   watcher->setFuture(QtConcurrent::run([raw = s.raw, id = s.id, options = m_document.options(), superseded] {
-    BackgroundFit out{id, options, std::nullopt, {}, superseded};
+    BackgroundFit out{id, raw.samples.empty() ? Vec2::Zero() : raw.samples.front().p, options, std::nullopt, {}, superseded};
     // (a fit already running finishes; Document::completeFit drops it if its options are stale)
     if ((out.superseded = superseded->load())) return out;
     try {
@@ -482,7 +482,7 @@ void MainWindow::takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher) {
     return;
   }
   const int stroke = m_selected_stroke, piece = m_selected_piece;
-  if (!m_document.completeFit(done.id, done.options, std::move(done.fit), done.error)) return;
+  if (!m_document.completeFit(done.id, done.options, std::move(done.fit), done.error, done.fitted_at)) return;
   documentChanged();
   // A segment selected on another stroke stays selected (that stroke did not change).
   const auto& strokes = m_document.strokes();

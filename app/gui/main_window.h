@@ -93,6 +93,7 @@ class MainWindow : public QMainWindow {
  private:
   struct BackgroundFit {
     std::uint64_t id = 0;
+    Vec2 fitted_at = Vec2::Zero();  // the stroke's first raw sample as fitted (it may move meanwhile)
     FitOptions options;
     std::optional<FitResult> fit;
     std::string error;
