@@ -137,7 +137,7 @@ TEST_F(MainWindowTest, DeleteRemovesTheSelectedStrokeUndoably) {
   const std::uint64_t second = window->document().strokes()[1].id;
   QAction* remove = nullptr;
   for (QAction* a : window->findChildren<QAction*>())
-    if (a->text() == "&Delete stroke") remove = a;
+    if (a->text() == "&Delete") remove = a;
   ASSERT_NE(remove, nullptr);
   EXPECT_TRUE(remove->shortcuts().contains(QKeySequence(QKeySequence::Delete)));
   remove->trigger();  // nothing selected: nothing goes
