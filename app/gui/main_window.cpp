@@ -391,6 +391,7 @@ void MainWindow::selectSegment(int stroke, int piece) {
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
   if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
+  m_plot->setHighlight(fit ? piece : -1);
   const std::string fixed = fit && piece >= 0 ? whyAlphaIsFixed(*fit, static_cast<std::size_t>(piece)) : "select a segment first (click it with V, or right-click it)";
   m_parameters->setSegmentAlpha(fixed.empty(), fixed.empty() ? fit->curve.pieces[piece].segment.alpha() : 0.0,
                                 QString::fromStdString(fixed));

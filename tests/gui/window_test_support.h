@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "app/gui/canvas.h"
 #include "app/gui/main_window.h"
 
 namespace la::gui {
