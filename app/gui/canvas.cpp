@@ -2,6 +2,7 @@
 
 #include <QDateTime>
 #include <QGestureEvent>
+#include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPainterPath>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <optional>
 
+#include "app/gui/markers.h"
 #include "fitting/user_edits.h"
 
 namespace la::gui {
@@ -23,6 +25,21 @@ const QColor kCombColor(211, 47, 47, 160);
 const QColor kStrokeInkColor(60, 60, 60);
 const QColor kTriangleColor(120, 60, 170);
 const QColor kConstructionColor(27, 94, 32);
+const QColor kSelectionColor(33, 150, 243, 70);
+
+}  // namespace
+
+QString emptyCanvasHint() {
+  return "Draw with the pen or the mouse\n\n"
+         "B draw · V select and edit · H pan (or hold Space) · wheel zooms · F fits the view\n"
+         "File > Import points… for a scanned profile or a point file";
+}
+
+void drawControlPoint(QPainter& p, const QPointF& q) {  // a diamond
+  p.drawPolygon(QPolygonF({q + QPointF(0, -5), q + QPointF(5, 0), q + QPointF(0, 5), q + QPointF(-5, 0)}));
+}
+
+namespace {
 
 }  // namespace
 
@@ -94,6 +111,10 @@ bool Canvas::event(QEvent* e) {
       // One finger draws (with its pressure where the screen reports one); a second
       // finger turns the touch into a pinch, so the stroke begun by the first is dropped.
       auto* t = static_cast<QTouchEvent*>(e);
+      if (!m_drawing && (m_tool != Tool::kDraw || m_space_held)) {
+        e->ignore();  // a finger selects and pans as the mouse does (Qt makes mouse events of it)
+        return false;
+      }
       const double now = static_cast<double>(t->timestamp());
       if (t->points().size() != 1 || e->type() == QEvent::TouchCancel) {
         if (m_drawing) {
@@ -170,6 +191,10 @@ void Canvas::endStroke() {
 }
 
 void Canvas::tabletEvent(QTabletEvent* e) {
+  if (!m_drawing && (m_tool != Tool::kDraw || m_space_held)) {
+    e->ignore();  // Qt makes mouse events of it: the pen selects and pans as the mouse does
+    return;
+  }
   const double now = static_cast<double>(e->timestamp());
   switch (e->type()) {
     case QEvent::TabletPress: beginStroke(e->position(), e->pressure(), now); break;
@@ -185,51 +210,148 @@ void Canvas::tabletEvent(QTabletEvent* e) {
   e->accept();  // no synthesized mouse events for pen input
 }
 
+bool Canvas::pansWithLeftButton(Qt::KeyboardModifiers modifiers) const {
+  return m_space_held || m_tool == Tool::kPan || (m_tool == Tool::kDraw && (modifiers & Qt::ShiftModifier));
+}
+
+void Canvas::setTool(Tool tool) {
+  m_tool = tool;
+  m_band.reset();
+  updateCursor();
+  update();
+}
+
+void Canvas::updateCursor() {
+  if (m_panning) setCursor(Qt::ClosedHandCursor);
+  else if (m_space_held || m_tool == Tool::kPan) setCursor(Qt::OpenHandCursor);
+  else if (m_tool == Tool::kDraw) setCursor(Qt::CrossCursor);
+  else setCursor(Qt::ArrowCursor);
+}
+
+void Canvas::keyPressEvent(QKeyEvent* e) {
+  if (e->key() == Qt::Key_Space && !e->isAutoRepeat()) {
+    m_space_held = true;
+    updateCursor();
+    e->accept();
+    return;
+  }
+  QWidget::keyPressEvent(e);
+}
+
+void Canvas::keyReleaseEvent(QKeyEvent* e) {
+  if (e->key() == Qt::Key_Space && !e->isAutoRepeat()) {
+    m_space_held = false;
+    updateCursor();
+    e->accept();
+    return;
+  }
+  QWidget::keyReleaseEvent(e);
+}
+
+void Canvas::focusOutEvent(QFocusEvent* e) {
+  m_space_held = false;
+  updateCursor();
+  QWidget::focusOutEvent(e);
+}
+
+bool Canvas::pickEditHandle(const QPointF& at, bool selected_only) {
+  if (!m_document) return false;
+  double best = 8.0;  // pixels
+  auto consider = [&](const Vec2& q, std::size_t stroke, std::size_t index, bool apex) {
+    const QPointF w = toWidget(q);
+    const double d = std::hypot(w.x() - at.x(), w.y() - at.y());
+    if (d < best) best = d, m_drag_stroke = static_cast<int>(stroke), m_drag_piece = static_cast<int>(index), m_drag_apex = apex;
+  };
+  for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
+    const DocumentStroke& s = m_document->strokes()[k];
+    if (!s.fit || (selected_only && !m_selection.contains(s))) continue;
+    const auto& pieces = s.fit->curve.pieces;
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      consider(pieces[i].segment.start(), k, i, false);
+      if (!showsTriangle(static_cast<int>(k), static_cast<int>(i))) continue;
+      if (const std::optional<Vec2> apex = controlApex(pieces[i].segment)) consider(*apex, k, i, true);
+    }
+    if (!s.fit->curve.closed && !pieces.empty()) consider(pieces.back().segment.end(), k, pieces.size(), false);
+  }
+  return m_drag_piece >= 0;
+}
+
+void Canvas::selectPress(const QPointF& at, bool shift) {
+  if (!m_document) return;
+  // the selected strokes' joints and the selected segment's apex are handles here, as
+  // under ctrl in the Draw tool
+  if (!shift && pickEditHandle(at, /*selected_only=*/true)) return;
+  const StrokeHit hit = strokeAt(*m_document, m_view, at);
+  if (hit.stroke < 0) {  // empty canvas: a rubber band
+    m_band = QRectF(at, at);
+    m_band_additive = shift;
+    return;
+  }
+  const DocumentStroke& stroke = m_document->strokes()[static_cast<std::size_t>(hit.stroke)];
+  if (shift) {
+    m_selection.toggle(stroke);
+    emit selectionChanged();
+    update();
+    return;
+  }
+  if (!m_selection.contains(stroke)) {
+    m_selection.clear();
+    m_selection.add(stroke);
+    emit selectionChanged();
+  }
+  setSelection(hit.stroke, hit.piece);
+  emit segmentClicked(hit.stroke, hit.piece);
+  m_moving = true;
+  m_move_last = toWorld(at);
+  ++m_move_drag;
+  update();
+}
+
+void Canvas::finishBand() {
+  const QRectF band = m_band->normalized();
+  m_band.reset();
+  constexpr double kClickPixels = 3.0;  // a band this small was a click on empty canvas
+  if (band.width() < kClickPixels && band.height() < kClickPixels) {
+    if (!m_band_additive && !m_selection.empty()) {
+      m_selection.clear();
+      emit selectionChanged();
+      emit segmentClicked(-1, -1);
+    }
+    update();
+    return;
+  }
+  const std::vector<std::size_t> inside = strokesInside(*m_document, m_view, band);
+  if (!m_band_additive) m_selection.clear();
+  for (std::size_t i : inside) m_selection.add(m_document->strokes()[i]);
+  emit selectionChanged();
+  update();
+}
+
 void Canvas::mousePressEvent(QMouseEvent* e) {
-  if (e->button() == Qt::MiddleButton || (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ShiftModifier))) {
+  const QPointF at = e->position();
+  const bool left = e->button() == Qt::LeftButton;
+  if (e->button() == Qt::MiddleButton || (left && pansWithLeftButton(e->modifiers()))) {
     m_panning = true;
-    m_pan_anchor = e->position();
-  } else if (e->button() == Qt::LeftButton && (e->modifiers() & Qt::ControlModifier) && m_document) {
+    m_pan_anchor = at;
+    updateCursor();
+  } else if (left && (e->modifiers() & Qt::ControlModifier) && m_document) {
     // ctrl+drag moves the joint (the open curve's end too) or the shown control-triangle
-    // apex under the cursor, within 8 pixels
-    double best = 8.0;
-    auto consider = [&](const Vec2& q, std::size_t stroke, std::size_t index, bool apex) {
-      const QPointF w = toWidget(q);
-      const double d = std::hypot(w.x() - e->position().x(), w.y() - e->position().y());
-      if (d < best) best = d, m_drag_stroke = static_cast<int>(stroke), m_drag_piece = static_cast<int>(index), m_drag_apex = apex;
-    };
-    for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
-      const auto& fit = m_document->strokes()[k].fit;
-      if (!fit) continue;
-      const auto& pieces = fit->curve.pieces;
-      for (std::size_t i = 0; i < pieces.size(); ++i) {
-        consider(pieces[i].segment.start(), k, i, false);
-        if (!showsTriangle(static_cast<int>(k), static_cast<int>(i))) continue;
-        if (const std::optional<Vec2> apex = controlApex(pieces[i].segment)) consider(*apex, k, i, true);
-      }
-      if (!fit->curve.closed && !pieces.empty()) consider(pieces.back().segment.end(), k, pieces.size(), false);
-    }
-  } else if (e->button() == Qt::LeftButton && pickHandle(e->position())) {
+    // apex under the cursor, within 8 pixels, in any tool
+    pickEditHandle(at, /*selected_only=*/false);
+  } else if (left && pickHandle(at)) {
     emit handlePressed(m_drag_construction);
-  } else if (e->button() == Qt::LeftButton) {
-    beginStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
+  } else if (left && m_tool == Tool::kSelect) {
+    selectPress(at, e->modifiers() & Qt::ShiftModifier);
+  } else if (left) {
+    beginStroke(at, NAN, static_cast<double>(e->timestamp()));
   } else if (e->button() == Qt::RightButton && m_document) {
-    // select the segment nearest the click (within 12 pixels)
-    double best = 12.0;
-    int best_stroke = -1, best_piece = -1;
-    for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
-      const auto& fit = m_document->strokes()[k].fit;
-      if (!fit) continue;
-      for (std::size_t i = 0; i < fit->curve.pieces.size(); ++i) {
-        const CurveSamples smp = fit->curve.pieces[i].segment.sample(48);
-        for (const Vec2& q : smp.point) {
-          const double d = std::hypot(toWidget(q).x() - e->position().x(), toWidget(q).y() - e->position().y());
-          if (d < best) best = d, best_stroke = static_cast<int>(k), best_piece = static_cast<int>(i);
-        }
-      }
-    }
-    setSelection(best_stroke, best_piece);
-    emit segmentClicked(best_stroke, best_piece);
+    // selects the segment nearest the click (within 12 pixels), and its stroke
+    const StrokeHit hit = strokeAt(*m_document, m_view, at, 12.0);
+    m_selection.clear();
+    if (hit.stroke >= 0) m_selection.add(m_document->strokes()[static_cast<std::size_t>(hit.stroke)]);
+    emit selectionChanged();
+    setSelection(hit.stroke, hit.piece);
+    emit segmentClicked(hit.stroke, hit.piece);
   }
 }
 
@@ -246,6 +368,13 @@ void Canvas::mouseMoveEvent(QMouseEvent* e) {
   } else if (m_drag_piece >= 0) {
     if (m_drag_apex) emit apexDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
     else emit jointDragged(m_drag_stroke, m_drag_piece, toWorld(e->position()));
+  } else if (m_moving) {
+    const QPointF now = toWorld(e->position()), d = now - m_move_last;
+    m_move_last = now;
+    if (d != QPointF() && m_document) emit strokesMoved(m_selection.indices(*m_document), d, m_move_drag);
+  } else if (m_band) {
+    m_band->setBottomRight(e->position());
+    update();
   } else if (m_drawing) {
     extendStroke(e->position(), NAN, static_cast<double>(e->timestamp()));
   }
@@ -267,8 +396,17 @@ void Canvas::mouseReleaseEvent(QMouseEvent* e) {
     else emit jointDropped(stroke, piece, toWorld(e->position()));
     return;
   }
-  if (m_panning) m_panning = false;
-  else if (m_drawing) endStroke();
+  if (m_panning) {
+    m_panning = false;
+    updateCursor();
+  } else if (m_moving) {
+    m_moving = false;
+  } else if (m_band) {
+    m_band->setBottomRight(e->position());
+    finishBand();
+  } else if (m_drawing) {
+    endStroke();
+  }
 }
 
 void Canvas::wheelEvent(QWheelEvent* e) { zoomAbout(e->position(), std::pow(kZoomStep, e->angleDelta().y() / 120.0)); }
@@ -292,16 +430,35 @@ void Canvas::setSelectedConstruction(int index) {
   update();
 }
 
-void Canvas::paintComb(QPainter& p, const std::vector<Vec2>& points, const std::vector<Vec2>& normals,
-                       const std::vector<double>& kappa, double scale) const {
+void Canvas::paintComb(QPainter& p, const Comb& comb) const {
   p.setPen(QPen(kCombColor, 1.0));
+  for (std::size_t i = 0; i < comb.base.size(); ++i) p.drawLine(toWidget(comb.base[i]), toWidget(comb.tip[i]));
   QPolygonF envelope;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec2 tip = points[i] - scale * kappa[i] * normals[i];
-    p.drawLine(toWidget(points[i]), toWidget(tip));
-    envelope << toWidget(tip);
-  }
+  for (const Vec2& q : comb.envelope) envelope << toWidget(q);
   p.drawPolyline(envelope);
+}
+
+double Canvas::sharedMaxCurvature() const {
+  double kmax = 0.0;
+  if (!m_document) return kmax;
+  for (const DocumentStroke& s : m_document->strokes())
+    if (s.fit) kmax = std::max(kmax, maxAbsCurvature(s.fit->curve));
+  for (const Construction& c : m_document->constructions())
+    for (double k : c.result.kappa) kmax = std::max(kmax, std::abs(k));
+  return kmax;
+}
+
+double Canvas::combGain(double kmax) const {
+  if (m_layers.comb_shared) kmax = std::max(kmax, sharedMaxCurvature());
+  return kmax > 0 ? m_layers.comb_scale * std::min(width(), height()) / m_view.m11() / kmax : 0.0;
+}
+
+Comb Canvas::combOf(int stroke) const {
+  if (!m_document || stroke < 0 || stroke >= static_cast<int>(m_document->strokes().size())) return {};
+  const auto& fit = m_document->strokes()[static_cast<std::size_t>(stroke)].fit;
+  if (!fit) return {};
+  const double gain = combGain(maxAbsCurvature(fit->curve));
+  return gain > 0 ? curvatureComb(fit->curve, gain, m_layers.comb_teeth) : Comb{};
 }
 
 void Canvas::paintConstruction(QPainter& p, const Construction& c, bool selected) const {
@@ -309,18 +466,8 @@ void Canvas::paintConstruction(QPainter& p, const Construction& c, bool selected
   if (m_layers.comb && !r.kappa.empty()) {
     double kmax = 0.0;
     for (double k : r.kappa) kmax = std::max(kmax, std::abs(k));
-    if (kmax > 0) {
-      // about comb_density teeth per segment's worth of samples, like the fitted curves
-      const std::size_t every = std::max<std::size_t>(1, r.points.size() / std::max(2, 3 * m_layers.comb_density));
-      std::vector<Vec2> points, normals;
-      std::vector<double> kappa;
-      for (std::size_t i = 0; i < r.points.size(); i += every) {
-        points.push_back(r.points[i]);
-        normals.push_back(r.normals[i]);
-        kappa.push_back(r.kappa[i]);
-      }
-      paintComb(p, points, normals, kappa, m_layers.comb_scale * std::min(width(), height()) / m_view.m11() / kmax);
-    }
+    if (const double gain = combGain(kmax); gain > 0)
+      paintComb(p, curvatureComb(r.s, r.points, r.normals, r.kappa, gain, m_layers.comb_teeth));
   }
   QPolygonF polygon;
   for (const Vec2& q : c.handles) polygon << toWidget(q);
@@ -359,27 +506,19 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit, int stroke) const {
       p.drawPolyline(line);
     }
   }
-  double kmax = 0.0;
-  for (const CurvePiece& piece : curve.pieces)
-    kmax = std::max({kmax, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
-  const double comb_world = kmax > 0 ? m_layers.comb_scale * std::min(width(), height()) / m_view.m11() / kmax : 0.0;
+  if (m_layers.comb) {
+    if (const double gain = combGain(maxAbsCurvature(curve)); gain > 0)
+      paintComb(p, curvatureComb(curve, gain, m_layers.comb_teeth));
+  }
   for (std::size_t index = 0; index < curve.pieces.size(); ++index) {
-    const CurvePiece& piece = curve.pieces[index];
-    const LaSegment& seg = piece.segment;
+    const LaSegment& seg = curve.pieces[index].segment;
     const std::optional<Vec2> apex = stroke >= 0 && showsTriangle(stroke, static_cast<int>(index)) ? controlApex(seg) : std::nullopt;
     if (apex) {
       p.setPen(QPen(kTriangleColor, 1.0, Qt::DotLine));
       p.setBrush(Qt::NoBrush);
       p.drawPolyline(QPolygonF({toWidget(seg.start()), toWidget(*apex), toWidget(seg.end())}));
       p.setPen(QPen(kTriangleColor, 1.2));
-      const QPointF q = toWidget(*apex);  // a diamond: ctrl+drag it
-      p.drawPolygon(QPolygonF({q + QPointF(0, -5), q + QPointF(5, 0), q + QPointF(0, 5), q + QPointF(-5, 0)}));
-    }
-    if (m_layers.comb && comb_world > 0) {
-      const CurveSamples teeth = seg.sample(std::max(2, m_layers.comb_density));
-      std::vector<Vec2> normals;
-      for (const Vec2& t : teeth.tangent) normals.push_back(Vec2(-t.y(), t.x()));
-      paintComb(p, teeth.point, normals, teeth.kappa, comb_world);
+      drawControlPoint(p, toWidget(*apex));  // drag it (Select tool, or ctrl+drag)
     }
     if (m_layers.curve) {
       const int n = std::clamp(static_cast<int>(seg.length() * m_view.m11() / 3.0), 8, 2000);
@@ -390,20 +529,33 @@ void Canvas::paintCurve(QPainter& p, const FitResult& fit, int stroke) const {
                     static_cast<int>(index) == selected_piece ? 3.5 : 2.2));
       p.drawPolyline(line);
     }
-    if (m_layers.markers) {
-      const QPointF joint = toWidget(seg.start());
-      p.setPen(QPen(Qt::black, 1.0));
-      p.setBrush(Qt::NoBrush);
-      if (seg.kappaStart() == 0.0) {
-        p.drawEllipse(joint, 5, 5);  // inflection
-      } else if (piece.corner) {
-        p.drawLine(joint + QPointF(-5, -5), joint + QPointF(5, 5));  // corner
-        p.drawLine(joint + QPointF(-5, 5), joint + QPointF(5, -5));
-      } else {
-        p.drawRect(QRectF(joint - QPointF(4, 4), QSizeF(8, 8)));  // curvature extremum / joint
-      }
-    }
   }
+  if (m_layers.markers) {
+    p.setPen(QPen(Qt::black, 1.0));
+    for (const CurveMarker& m : curveMarkers(curve, fit.quality.diagonal > 0 ? fit.quality.diagonal : 1.0))
+      drawMarker(p, m.kind, toWidget(m.at));
+  }
+}
+
+void Canvas::paintSelection(QPainter& p, const DocumentStroke& stroke) const {
+  // a halo under the curve and a dashed box around it, as Inkscape marks a selection
+  QPolygonF line;
+  for (const Vec2& q : strokeOutline(stroke)) line << toWidget(q);
+  QRectF box = line.boundingRect();
+  for (const StrokeSample& q : stroke.raw.samples) box |= QRectF(toWidget(q.p), QSizeF(0, 0));
+  p.setPen(QPen(kSelectionColor, 8.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+  p.setBrush(Qt::NoBrush);
+  p.drawPolyline(line);
+  p.setPen(QPen(QColor(60, 60, 60), 1.0, Qt::DashLine));
+  p.drawRect(box.adjusted(-6, -6, 6, 6));
+}
+
+void Canvas::paintHint(QPainter& p) const {
+  p.setPen(QColor(140, 140, 140));
+  QFont f = font();
+  f.setPointSizeF(f.pointSizeF() * 1.2);
+  p.setFont(f);
+  p.drawText(rect().adjusted(20, 20, -20, -20), Qt::AlignCenter | Qt::TextWordWrap, emptyCanvasHint());
 }
 
 void Canvas::paintEvent(QPaintEvent*) {
@@ -417,6 +569,8 @@ void Canvas::paintEvent(QPaintEvent*) {
     p.restore();
   }
   if (m_document) {
+    for (const DocumentStroke& s : m_document->strokes())
+      if (m_selection.contains(s)) paintSelection(p, s);
     for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
       const DocumentStroke& s = m_document->strokes()[k];
       if (m_layers.raw_points || !s.fit) {
@@ -437,6 +591,17 @@ void Canvas::paintEvent(QPaintEvent*) {
     p.setPen(QPen(kStrokeInkColor, 1.5));
     p.drawPolyline(ink);
   }
+  if (m_band) {
+    p.setPen(QPen(QColor(60, 60, 60), 1.0, Qt::DashLine));
+    p.setBrush(QColor(33, 150, 243, 30));
+    p.drawRect(m_band->normalized());
+  }
+  if (showsHint()) paintHint(p);
+}
+
+bool Canvas::showsHint() const {
+  const bool empty = !m_document || (m_document->strokes().empty() && m_document->constructions().empty());
+  return empty && m_current.samples.empty() && m_background.isNull();
 }
 
 }  // namespace la::gui

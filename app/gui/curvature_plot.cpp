@@ -2,6 +2,7 @@
 
 #include "app/gui/chart.h"
 
+#include <QComboBox>
 #include <QPainter>
 #include <algorithm>
 #include <cmath>
@@ -11,15 +12,56 @@ namespace {
 
 constexpr int kSamplesPerSegment = 64;
 constexpr int kSplineSamples = 400;
+constexpr double kTopMargin = 32;  // the mode box and the legend, above the data
+// The log scale shows this many decades below the largest |kappa|: a comb shows no finer
+// difference, and the curvature's approach to 0 at an inflection would fill the axis.
+constexpr double kLogDecades = 4.0;
+const QColor kBeforeColor(150, 150, 150);
+const QColor kAfterColor(21, 101, 192);
+const QColor kHighlightColor(255, 143, 0, 45);  // the canvas' selected-segment orange, faint
 
 }  // namespace
 
-CurvaturePlot::CurvaturePlot(QWidget* parent) : QWidget(parent) { setMinimumSize(280, 160); }
+CurvaturePlot::CurvaturePlot(QWidget* parent) : QWidget(parent) {
+  setMinimumSize(300, 180);
+  m_mode_box = new QComboBox(this);
+  m_mode_box->setObjectName("curvature-plot-mode");
+  m_mode_box->addItem("curvature κ", static_cast<int>(Mode::kCurvature));
+  m_mode_box->addItem("|κ|, log scale", static_cast<int>(Mode::kLogAbsCurvature));
+  m_mode_box->addItem("radius 1/|κ|", static_cast<int>(Mode::kRadius));
+  m_mode_box->move(4, 3);
+  m_mode_box->setFocusPolicy(Qt::ClickFocus);
+  connect(m_mode_box, &QComboBox::currentIndexChanged, this,
+          [this](int i) { setMode(static_cast<Mode>(m_mode_box->itemData(i).toInt())); });
+}
+
+void CurvaturePlot::setMode(Mode mode) {
+  m_mode = mode;
+  const int i = m_mode_box->findData(static_cast<int>(mode));
+  if (m_mode_box->currentIndex() != i) m_mode_box->setCurrentIndex(i);
+  update();
+}
+
+double CurvaturePlot::value(double kappa) const {
+  switch (m_mode) {
+    case Mode::kCurvature: return kappa;
+    case Mode::kLogAbsCurvature: return kappa != 0.0 ? std::log10(std::abs(kappa)) : NAN;
+    case Mode::kRadius: return kappa != 0.0 ? 1.0 / std::abs(kappa) : NAN;
+  }
+  return NAN;
+}
+
+std::vector<std::pair<double, double>> CurvaturePlot::afterPoints() const {
+  std::vector<std::pair<double, double>> out;
+  for (std::size_t i = 0; i < m_after.s.size(); ++i) out.emplace_back(m_after.s[i], value(m_after.kappa[i]));
+  return out;
+}
 
 void CurvaturePlot::setFit(const FitResult* fit) {
   m_before = {};
   m_after = {};
   m_joints.clear();
+  m_highlight = {0.0, 0.0};
   if (fit) {
     double s0 = 0.0;
     for (const CurvePiece& piece : fit->curve.pieces) {
@@ -53,68 +95,120 @@ void CurvaturePlot::setCurve(const std::vector<double>& s, const std::vector<dou
   m_before = {};
   m_after = {s, kappa};
   m_joints = joints;
+  m_highlight = {0.0, 0.0};
   update();
+}
+
+void CurvaturePlot::setHighlight(int piece) {
+  m_highlight = {0.0, 0.0};
+  if (piece >= 0 && piece < static_cast<int>(m_joints.size())) {
+    const std::size_t p = static_cast<std::size_t>(piece);
+    m_highlight = {m_joints[p], p + 1 < m_joints.size() ? m_joints[p + 1] : totalLength()};
+  }
+  update();
+}
+
+QRectF CurvaturePlot::plotArea() const { return QRectF(62, kTopMargin, width() - 76, height() - kTopMargin - 34); }
+
+QRectF CurvaturePlot::legendRect() const {
+  // right of the mode box, in the top margin
+  const double left = m_mode_box->geometry().right() + 12;
+  return QRectF(left, 2, std::max(0.0, width() - left - 8), kTopMargin - 6);
 }
 
 void CurvaturePlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
-  const QRectF area(56, 14, width() - 70, height() - 48);
-  drawChartPage(p, *this, area, "arc length s", "curvature κ");
+  const QRectF area = plotArea();
+  const char* y_label = m_mode == Mode::kCurvature ? "curvature κ" : (m_mode == Mode::kRadius ? "radius" : "|κ| (log)");
+  drawChartPage(p, *this, area, "arc length s", y_label);
   if (m_after.s.empty()) {
     p.drawText(area, Qt::AlignCenter, "draw a stroke to see its curvature");
     return;
   }
-  double s_max = m_after.s.back(), k_lo = 0.0, k_hi = 0.0;
-  for (const Series* ser : {&m_before, &m_after})
-    for (double k : ser->kappa) k_lo = std::min(k_lo, k), k_hi = std::max(k_hi, k);
+  double s_max = m_after.s.back();
   if (!m_before.s.empty()) s_max = std::max(s_max, m_before.s.back());
-  const double pad = 0.08 * std::max(k_hi - k_lo, 1e-12);
-  k_lo -= pad;
-  k_hi += pad;
-  auto map = [&](double s, double k) {
-    return QPointF(area.left() + area.width() * s / s_max, area.bottom() - area.height() * (k - k_lo) / (k_hi - k_lo));
+  double lo = INFINITY, hi = -INFINITY, smallest_radius = INFINITY;
+  for (const Series* ser : {&m_before, &m_after})
+    for (double k : ser->kappa)
+      if (const double v = value(k); std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!std::isfinite(lo)) lo = 0.0, hi = 1.0;
+  if (m_mode == Mode::kCurvature) lo = std::min(lo, 0.0), hi = std::max(hi, 0.0);  // the zero line shows
+  if (m_mode == Mode::kLogAbsCurvature)  // near an inflection |kappa| falls through every decade
+    lo = std::max(lo, hi - kLogDecades);
+  if (m_mode == Mode::kRadius) {
+    // a radius longer than the whole curve reads as straight: the axis stops there
+    // (near an inflection the radius grows without bound)
+    smallest_radius = lo;
+    lo = 0.0;
+    hi = std::min(hi, std::max(s_max, 2.0 * smallest_radius));
+  }
+  const double pad = 0.08 * std::max(hi - lo, 1e-12 * std::max(1.0, std::abs(hi)));
+  if (m_mode != Mode::kRadius) lo -= pad;
+  hi += pad;
+  auto map = [&](double s, double v) {
+    return QPointF(area.left() + area.width() * s / s_max, area.bottom() - area.height() * (v - lo) / (hi - lo));
   };
-  // axes and ticks
+  // the selected segment's range, under everything
+  if (m_highlight.second > m_highlight.first)
+    p.fillRect(QRectF(map(m_highlight.first, hi), map(m_highlight.second, lo)).normalized(), kHighlightColor);
   p.setPen(QPen(Qt::black, 1.0));
   p.drawRect(area);
   QFont small = font();
   small.setPointSizeF(small.pointSizeF() * 0.8);
   p.setFont(small);
-  const double ks = tickStep(k_hi - k_lo);
-  for (double k = std::ceil(k_lo / ks) * ks; k <= k_hi; k += ks) {
-    const QPointF a = map(0, k);
+  for (double v : roundTicks(lo, hi)) {
+    const QPointF a = map(0, v);
     p.setPen(QPen(QColor(225, 225, 225), 1.0));
-    p.drawLine(a, map(s_max, k));
+    p.drawLine(a, map(s_max, v));
     p.setPen(Qt::black);
-    p.drawText(QRectF(a.x() - 54, a.y() - 8, 50, 16), Qt::AlignRight | Qt::AlignVCenter, QString::number(k, 'g', 3));
+    const QString label = m_mode == Mode::kLogAbsCurvature ? QString::number(std::pow(10.0, v), 'g', 2)
+                                                           : QString::number(std::abs(v) < 1e-12 * (hi - lo) ? 0.0 : v, 'g', 3);
+    p.drawText(QRectF(a.x() - 60, a.y() - 8, 56, 16), Qt::AlignRight | Qt::AlignVCenter, label);
   }
-  const double ss = tickStep(s_max);
-  for (double s = 0; s <= s_max; s += ss) {
-    const QPointF a = map(s, k_lo);
+  for (double s : roundTicks(0.0, s_max)) {
+    const QPointF a = map(s, lo);
     p.drawLine(a, a + QPointF(0, 4));
     p.drawText(QRectF(a.x() - 30, a.y() + 4, 60, 14), Qt::AlignCenter, QString::number(s, 'g', 4));
   }
-  p.setPen(QPen(QColor(120, 120, 120), 1.0, Qt::DashLine));
-  p.drawLine(map(0, 0), map(s_max, 0));
-  // joints
+  p.save();
+  p.setClipRect(area);
+  if (m_mode == Mode::kCurvature) {
+    p.setPen(QPen(QColor(120, 120, 120), 1.0, Qt::DashLine));
+    p.drawLine(map(0, 0), map(s_max, 0));
+  }
   p.setPen(QPen(QColor(0, 0, 0, 60), 1.0));
-  for (double s : m_joints) p.drawLine(map(s, k_lo), map(s, k_hi));
+  for (double s : m_joints) p.drawLine(map(s, lo), map(s, hi));
   auto draw = [&](const Series& ser, const QPen& pen) {
-    QPolygonF line;
-    for (std::size_t i = 0; i < ser.s.size(); ++i) line << map(ser.s[i], ser.kappa[i]);
     p.setPen(pen);
-    p.drawPolyline(line);
+    QPolygonF line;  // broken where the mode has no value (log of 0, radius of a line)
+    for (std::size_t i = 0; i <= ser.s.size(); ++i) {
+      const double v = i < ser.s.size() ? value(ser.kappa[i]) : NAN;
+      if (std::isfinite(v)) {
+        line << map(ser.s[i], v);
+        continue;
+      }
+      if (line.size() > 1) p.drawPolyline(line);
+      line.clear();
+    }
   };
-  draw(m_before, QPen(QColor(150, 150, 150), 1.2));
-  draw(m_after, QPen(QColor(21, 101, 192), 2.0));
-  p.setPen(QColor(21, 101, 192));
+  draw(m_before, QPen(kBeforeColor, 1.2));
+  draw(m_after, QPen(kAfterColor, 2.0));
+  p.restore();
+  // the legend, in the margin above the data
+  p.setFont(small);
+  const QRectF legend = legendRect();
+  auto entry = [&](double x, const QColor& color, const QString& text) {
+    p.setPen(QPen(color, 2.0));
+    p.drawLine(QPointF(x, legend.center().y()), QPointF(x + 14, legend.center().y()));
+    p.drawText(QRectF(x + 18, legend.top(), legend.right() - x - 18, legend.height()), Qt::AlignVCenter | Qt::AlignLeft, text);
+    return x + 24 + p.fontMetrics().horizontalAdvance(text);
+  };
   if (m_before.s.empty()) {
-    p.drawText(QPointF(area.right() - 170, area.top() + 14), "constructed curve");
+    entry(legend.left(), kAfterColor, "constructed curve");
     return;
   }
-  p.drawText(QPointF(area.right() - 170, area.top() + 28), "after (LA curve, G2)");
-  p.setPen(QColor(150, 150, 150));
-  p.drawText(QPointF(area.right() - 170, area.top() + 14), "before (smoothed stroke)");
+  const double x = entry(legend.left(), kBeforeColor, "before (smoothed stroke)");
+  entry(x, kAfterColor, "after (LA curve, G2)");
 }
 
 }  // namespace la::gui

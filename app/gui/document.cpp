@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "app/gui/translate.h"
 #include "app/io/fit_json.h"
 #include "app/io/fit_options_json.h"
 #include "core/atomic_file.h"
@@ -129,18 +130,25 @@ void Document::insertStroke(std::size_t index, const Stroke& raw, bool provision
 }
 
 bool Document::completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit,
-                           const std::string& error) {
+                           const std::string& error, const Vec2& fitted_at) {
   // (options are compared through their JSON form, which holds every one the app sets)
   if (fitOptionsToJson(options) != fitOptionsToJson(options_)) return false;
   for (DocumentStroke& s : strokes_) {
     if (s.id != id) continue;
     if (!s.provisional) return false;
+    const Vec2 moved = s.raw.samples.empty() ? Vec2::Zero() : Vec2(s.raw.samples.front().p - fitted_at);
+    if (fit && moved != Vec2::Zero()) fit = translated(*fit, moved);
     s.fit = std::move(fit);
     s.error = s.fit ? std::string() : error;
     s.provisional = false;
     return true;
   }
   return false;
+}
+
+void Document::translateStrokes(const std::vector<std::size_t>& indices, const Vec2& d) {
+  for (std::size_t i : indices)
+    if (i < strokes_.size()) translateStroke(strokes_[i], d);
 }
 
 void Document::removeStroke(std::size_t index) {

@@ -48,8 +48,12 @@ class Document {
   /// The full fit of provisional stroke `id` (fitStroke with `options`, or the
   /// StrokeError's message), made in the background: taken if that stroke is still
   /// there, still provisional (not edited since) and the options are the same. Returns
-  /// whether it was taken.
-  bool completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit, const std::string& error);
+  /// whether it was taken. `fitted_at` is the first raw sample of the stroke as it was
+  /// fitted: where the stroke has moved since (translateStrokes), the fit moves with it.
+  bool completeFit(std::uint64_t id, const FitOptions& options, std::optional<FitResult> fit, const std::string& error,
+                   const Vec2& fitted_at);
+  /// Moves strokes by `d` without refitting (app/gui/translate.h).
+  void translateStrokes(const std::vector<std::size_t>& indices, const Vec2& d);
   /// Refits every stroke; `provisional` as insertStroke (strokes the user edited are
   /// always fitted in full: their edits are applied to the full fit).
   void setOptions(const FitOptions& options, bool provisional = false);

@@ -1,6 +1,9 @@
 #include "app/gui/main_window.h"
 
 #include <QAction>
+#include <QActionGroup>
+#include <QToolBar>
+#include <QToolButton>
 #include <QCloseEvent>
 #include <QDateTime>
 #include <QElapsedTimer>
@@ -26,6 +29,7 @@
 #include <functional>
 
 #include "app/gui/canvas.h"
+#include "app/gui/comb_panel.h"
 #include "app/gui/construction_panel.h"
 #include "app/gui/curvature_plot.h"
 #include "app/gui/lcg_plot.h"
@@ -67,24 +71,63 @@ class AddStrokeCommand : public QUndoCommand {
   std::size_t m_index = 0;
 };
 
-// Removes a stroke; undo puts it back as it was (fit, the user's edits), no refit.
-class DeleteStrokeCommand : public QUndoCommand {
+// Removes strokes as one step; undo puts them back as they were (fit, the user's edits),
+// without a refit, and selected.
+class DeleteStrokesCommand : public QUndoCommand {
  public:
-  DeleteStrokeCommand(MainWindow* w, std::size_t index)
-      : QUndoCommand("delete stroke"), m_window(w), m_index(index), m_stroke(w->document().strokes()[index]) {}
+  DeleteStrokesCommand(MainWindow* w, std::vector<std::size_t> indices)  // increasing
+      : QUndoCommand(indices.size() == 1 ? QString("delete stroke") : QString("delete %1 strokes").arg(indices.size())),
+        m_window(w), m_indices(std::move(indices)) {
+    for (std::size_t i : m_indices) m_strokes.push_back(w->document().strokes()[i]);
+  }
   void redo() override {
-    m_window->document().removeStroke(m_index);
+    for (auto i = m_indices.rbegin(); i != m_indices.rend(); ++i) m_window->document().removeStroke(*i);
     m_window->documentChanged();
   }
   void undo() override {
-    m_window->document().restoreStroke(m_index, m_stroke, /*insert=*/true);
+    for (std::size_t k = 0; k < m_indices.size(); ++k)
+      m_window->document().restoreStroke(m_indices[k], m_strokes[k], /*insert=*/true);
     m_window->documentChanged();
+    m_window->canvas()->selection().set(m_window->document(), m_indices);
   }
 
  private:
   MainWindow* m_window;
-  std::size_t m_index;
-  DocumentStroke m_stroke;
+  std::vector<std::size_t> m_indices;
+  std::vector<DocumentStroke> m_strokes;
+};
+
+// Moves strokes by a translation, which does not change their fits: no refit. The
+// steps of one drag merge (QUndoStack::push merges commands of one id), so a drag is one
+// undo step; undo moves them back and selects them.
+class MoveStrokesCommand : public QUndoCommand {
+ public:
+  static constexpr int kId = 1701;
+  MoveStrokesCommand(MainWindow* w, std::vector<std::size_t> strokes, const Vec2& d, int drag)
+      : QUndoCommand(strokes.size() == 1 ? QString("move stroke") : QString("move %1 strokes").arg(strokes.size())),
+        m_window(w), m_strokes(std::move(strokes)), m_d(d), m_drag(drag) {}
+  void redo() override { apply(m_d); }
+  void undo() override { apply(-m_d); }
+  int id() const override { return kId; }
+  bool mergeWith(const QUndoCommand* other) override {
+    const auto* next = static_cast<const MoveStrokesCommand*>(other);
+    if (next->m_drag != m_drag || next->m_strokes != m_strokes) return false;
+    m_d += next->m_d;
+    return true;
+  }
+
+ private:
+  void apply(const Vec2& d) {
+    const int stroke = m_window->selectedStroke(), piece = m_window->selectedPiece();
+    m_window->document().translateStrokes(m_strokes, d);
+    m_window->documentChanged();
+    m_window->selectSegment(stroke, piece);  // (indices do not change in a move)
+    m_window->canvas()->selection().set(m_window->document(), m_strokes);
+  }
+  MainWindow* m_window;
+  std::vector<std::size_t> m_strokes;
+  Vec2 m_d;
+  int m_drag;
 };
 
 class SetOptionsCommand : public QUndoCommand {
@@ -177,7 +220,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   addDockWidget(Qt::BottomDockWidgetArea, plot_dock);
 
   m_lcg = new LcgPlot;
-  auto* lcg_dock = new QDockWidget("LCG of the selected segment (right-click a segment)", this);
+  auto* lcg_dock = new QDockWidget("LCG of the selected segment (click it with V, or right-click)", this);
   lcg_dock->setObjectName("lcg-plot");
   lcg_dock->setWidget(m_lcg);
   addDockWidget(Qt::RightDockWidgetArea, lcg_dock);
@@ -196,12 +239,28 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   tabifyDockWidget(param_dock, construction_dock);
   param_dock->raise();
 
-  m_status = new QLabel("draw with the pen or the mouse; shift+drag or middle button pans, wheel zooms");
+  m_comb_panel = new CombPanel;
+  auto* comb_dock = new QDockWidget("Comb and marks", this);
+  comb_dock->setObjectName("comb");
+  comb_dock->setWidget(m_comb_panel);
+  addDockWidget(Qt::BottomDockWidgetArea, comb_dock);
+  splitDockWidget(plot_dock, comb_dock, Qt::Horizontal);
+  m_comb_panel->setSettings(m_canvas->layers().comb_scale, m_canvas->layers().comb_teeth, m_canvas->layers().comb_shared);
+  connect(m_comb_panel, &CombPanel::settingsChanged, this, &MainWindow::applyCombSettings);
+
+  m_status = new QLabel("draw with the pen or the mouse (B); V selects and moves, H or Space pans, the wheel zooms");
   statusBar()->addWidget(m_status, 1);
 
   connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::addStroke);
   connect(m_canvas, &Canvas::strokeProgress, this, &MainWindow::updatePreview);
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
+  connect(m_canvas, &Canvas::strokesMoved, this, [this](const std::vector<std::size_t>& strokes, const QPointF& d, int drag) {
+    moveStrokes(strokes, Vec2(d.x(), d.y()), drag);
+  });
+  connect(m_canvas, &Canvas::selectionChanged, this, [this] {
+    const std::size_t n = selectedStrokes().size();
+    if (n > 1) showMessage(QString("%1 strokes selected: drag one to move them all, Delete removes them").arg(n));
+  });
   connect(m_parameters, &ParameterPanel::optionsChanged, this, [this](const FitOptions& o) {
     m_undo->push(new SetOptionsCommand(this, m_document.options(), o));
   });
@@ -282,6 +341,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_autosave = new QTimer(this);
   connect(m_autosave, &QTimer::timeout, this, &MainWindow::autosave);
   m_autosave->start(kAutosaveMs);
+  buildToolBar();
   buildMenus();
   resize(1100, 760);
 }
@@ -331,7 +391,8 @@ void MainWindow::selectSegment(int stroke, int piece) {
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
   if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
-  const std::string fixed = fit && piece >= 0 ? whyAlphaIsFixed(*fit, static_cast<std::size_t>(piece)) : "right-click a segment first";
+  m_plot->setHighlight(fit ? piece : -1);
+  const std::string fixed = fit && piece >= 0 ? whyAlphaIsFixed(*fit, static_cast<std::size_t>(piece)) : "select a segment first (click it with V, or right-click it)";
   m_parameters->setSegmentAlpha(fixed.empty(), fixed.empty() ? fit->curve.pieces[piece].segment.alpha() : 0.0,
                                 QString::fromStdString(fixed));
   if (fit && piece >= 0) {
@@ -453,7 +514,7 @@ void MainWindow::fitInBackground(std::size_t index) {
   if (auto& newest = m_newest_fit[s.id]) newest->store(true);
   m_newest_fit[s.id] = superseded;
   watcher->setFuture(QtConcurrent::run([raw = s.raw, id = s.id, options = m_document.options(), superseded] {
-    BackgroundFit out{id, options, std::nullopt, {}, superseded};
+    BackgroundFit out{id, raw.samples.empty() ? Vec2::Zero() : raw.samples.front().p, options, std::nullopt, {}, superseded};
     // (a fit already running finishes; Document::completeFit drops it if its options are stale)
     if ((out.superseded = superseded->load())) return out;
     try {
@@ -482,7 +543,7 @@ void MainWindow::takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher) {
     return;
   }
   const int stroke = m_selected_stroke, piece = m_selected_piece;
-  if (!m_document.completeFit(done.id, done.options, std::move(done.fit), done.error)) return;
+  if (!m_document.completeFit(done.id, done.options, std::move(done.fit), done.error, done.fitted_at)) return;
   documentChanged();
   // A segment selected on another stroke stays selected (that stroke did not change).
   const auto& strokes = m_document.strokes();
@@ -519,6 +580,7 @@ bool MainWindow::exportPng(const QString& path) {
 
 void MainWindow::documentChanged() {
   m_dirty = true;
+  m_canvas->selection().set(m_document, selectedStrokes());  // (forgets strokes no longer there)
   m_canvas->update();
   const FitResult* last = nullptr;
   for (const DocumentStroke& s : m_document.strokes())
@@ -553,12 +615,97 @@ void MainWindow::documentChanged() {
                         .arg(refining ? " · fitting the chain to the points…" : ""));
 }
 
-void MainWindow::deleteSelectedStroke() {
-  if (m_selected_stroke < 0 || m_selected_stroke >= static_cast<int>(m_document.strokes().size())) {
-    showMessage("right-click a stroke to select it, then Delete removes it");
+void MainWindow::deleteSelectedStrokes() {
+  std::vector<std::size_t> doomed = selectedStrokes();
+  if (doomed.empty() && m_selected_stroke >= 0 && m_selected_stroke < static_cast<int>(m_document.strokes().size()))
+    doomed.push_back(static_cast<std::size_t>(m_selected_stroke));
+  if (doomed.empty()) {
+    showMessage("select strokes first (V, then click or drag a box; or right-click one), then Delete removes them");
     return;
   }
-  m_undo->push(new DeleteStrokeCommand(this, static_cast<std::size_t>(m_selected_stroke)));
+  m_undo->push(new DeleteStrokesCommand(this, doomed));
+}
+
+std::vector<std::size_t> MainWindow::selectedStrokes() const { return m_canvas->selection().indices(m_document); }
+
+void MainWindow::selectAll() {
+  std::vector<std::size_t> all(m_document.strokes().size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  m_canvas->selection().set(m_document, all);
+  m_canvas->update();
+  showMessage(QString("%1 strokes selected").arg(all.size()));
+}
+
+void MainWindow::clearSelection() {
+  m_canvas->selection().clear();
+  selectSegment(-1, -1);
+  m_canvas->update();
+}
+
+void MainWindow::moveStrokes(const std::vector<std::size_t>& strokes, const Vec2& d, int drag) {
+  if (strokes.empty()) return;
+  m_undo->push(new MoveStrokesCommand(this, strokes, d, drag));
+}
+
+QAction* MainWindow::toolAction(Tool tool) const {
+  for (QAction* a : m_tools->actions())
+    if (a->data().toInt() == static_cast<int>(tool)) return a;
+  return nullptr;
+}
+
+Tool MainWindow::tool() const { return m_canvas->tool(); }
+
+void MainWindow::setTool(Tool tool) { toolAction(tool)->trigger(); }
+
+void MainWindow::applyCombSettings() {
+  Layers& layers = m_canvas->layers();
+  layers.comb_scale = m_comb_panel->scale();
+  layers.comb_teeth = m_comb_panel->teeth();
+  layers.comb_shared = m_comb_panel->shared();
+  m_canvas->update();
+}
+
+void MainWindow::buildToolBar() {
+  auto* bar = new QToolBar("Tools", this);
+  bar->setObjectName("tools");
+  bar->setToolButtonStyle(Qt::ToolButtonTextUnderIcon);
+  bar->setMovable(true);
+  addToolBar(Qt::LeftToolBarArea, bar);
+  m_tools = new QActionGroup(this);
+  m_tools->setExclusive(true);
+  for (const ToolSpec& spec : kTools) {
+    QAction* a = bar->addAction(toolIcon(spec.tool), QString(spec.name).remove('&'));
+    a->setObjectName(QString("tool-") + QString(spec.name).remove('&').section(' ', 0, 0).toLower());
+    a->setData(static_cast<int>(spec.tool));
+    a->setCheckable(true);
+    QList<QKeySequence> keys{QKeySequence(spec.shortcut)};
+    if (spec.tool == Tool::kDraw) keys << QKeySequence("P");  // Inkscape's pencil key beside Krita's brush key
+    a->setShortcuts(keys);
+    QStringList names;
+    for (const QKeySequence& k : keys) names << k.toString(QKeySequence::NativeText);
+    a->setToolTip(QString("%1 (%2): %3").arg(QString(spec.name).remove('&'), names.join(" or "), spec.tip));
+    a->setStatusTip(spec.tip);
+    m_tools->addAction(a);
+    connect(a, &QAction::triggered, this, [this, spec] {
+      m_canvas->setTool(spec.tool);
+      showMessage(QString("%1: %2").arg(QString(spec.name).remove('&'), spec.tip));
+    });
+  }
+  toolAction(Tool::kDraw)->setChecked(true);
+  bar->addSeparator();
+  // the constructions are added, not drawn: a button with their menu
+  auto* construct = new QToolButton;
+  construct->setText("Construct");
+  construct->setIcon(toolIcon(std::nullopt));
+  construct->setToolButtonStyle(Qt::ToolButtonTextUnderIcon);
+  construct->setPopupMode(QToolButton::InstantPopup);
+  construct->setToolTip("add a curve built from handles and parameters (drag its handles in Draw or Select)");
+  auto* menu = new QMenu(construct);
+  for (ConstructionKind kind : {ConstructionKind::kSegment, ConstructionKind::kCompound, ConstructionKind::kHermite,
+                                ConstructionKind::kAlp})
+    menu->addAction(displayName(kind), this, [this, kind] { addConstruction(kind); });
+  construct->setMenu(menu);
+  bar->addWidget(construct);
 }
 
 void MainWindow::showMessage(const QString& what) { m_status->setText(what); }
@@ -623,7 +770,7 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   finishBackgroundFits();  // the curves as they end up, not the provisional ones
   const bool only_construction = selected_only && m_selected_stroke < 0 && m_selected_construction >= 0;
   if (selected_only && m_selected_stroke < 0 && !only_construction) {
-    showError("select a curve first (right-click it, or click a construction's handle)");
+    showError("select a curve first (click it with V or right-click it, or click a construction's handle)");
     return false;
   }
   std::vector<Curve> curves;
@@ -755,7 +902,14 @@ void MainWindow::buildMenus() {
   redo->setShortcuts(redo_keys);
   edit->addAction(undo);
   edit->addAction(redo);
-  edit->addAction("&Delete stroke", QKeySequence::Delete, this, [this] { deleteSelectedStroke(); });
+  edit->addSeparator();
+  edit->addAction("&Delete", QKeySequence::Delete, this, [this] { deleteSelectedStrokes(); });
+  edit->addAction("Select &all", QKeySequence::SelectAll, this, [this] { selectAll(); });
+  QAction* none = edit->addAction("&Clear selection", this, [this] { clearSelection(); });
+  none->setShortcuts({QKeySequence(Qt::Key_Escape), QKeySequence("Ctrl+Shift+A")});
+  edit->addSeparator();
+  QMenu* tools = edit->addMenu("&Tool");
+  tools->addActions(m_tools->actions());
 
   QMenu* construct = menuBar()->addMenu("&Construct");
   for (ConstructionKind kind : {ConstructionKind::kSegment, ConstructionKind::kCompound, ConstructionKind::kHermite,
@@ -784,16 +938,7 @@ void MainWindow::buildMenus() {
     m_canvas->layers().y_up = on;
     m_canvas->fitView();
   });
-  view->addAction("Comb &scale…", this, [this] {
-    bool ok = false;
-    const double v = QInputDialog::getDouble(this, "Comb scale", "Longest tooth (fraction of the view)", m_canvas->layers().comb_scale, 0.005, 1.0, 3, &ok);
-    if (ok) m_canvas->layers().comb_scale = v, m_canvas->update();
-  });
-  view->addAction("Comb &density…", this, [this] {
-    bool ok = false;
-    const int v = QInputDialog::getInt(this, "Comb density", "Teeth per segment", m_canvas->layers().comb_density, 2, 400, 1, &ok);
-    if (ok) m_canvas->layers().comb_density = v, m_canvas->update();
-  });
+  if (auto* dock = findChild<QDockWidget*>("comb")) view->addAction(dock->toggleViewAction());  // scale, teeth, legend
   view->addAction("Background &opacity…", this, [this] {
     bool ok = false;
     const double v = QInputDialog::getDouble(this, "Background", "Opacity", m_canvas->backgroundOpacity(), 0.0, 1.0, 2, &ok);

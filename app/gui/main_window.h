@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "app/gui/document.h"
+#include "app/gui/tools.h"
 
+class QActionGroup;
 class QLabel;
 class QMenu;
 class QTimer;
@@ -24,6 +26,7 @@ class QUndoStack;
 namespace la::gui {
 
 class Canvas;
+class CombPanel;
 class ConstructionPanel;
 class CurvaturePlot;
 class LcgPlot;
@@ -57,8 +60,19 @@ class MainWindow : public QMainWindow {
 
   /// Records a stroke (as the canvas does on pen-up), undoably.
   void addStroke(const Stroke& stroke);
-  /// Removes the selected stroke (right-click selects), undoably; says so where none is.
-  void deleteSelectedStroke();
+  /// Removes the selected strokes (or, where none is, the selected segment's stroke) as
+  /// one undo step; says so where nothing is selected.
+  void deleteSelectedStrokes();
+  /// The selected strokes' indices, increasing (the Select tool, Edit > Select all).
+  std::vector<std::size_t> selectedStrokes() const;
+  void selectAll();       // every stroke (not an undo step: the document does not change)
+  void clearSelection();  // strokes and segment
+  /// Moves strokes by `d` (world) undoably, without refitting; the steps of one drag
+  /// (`drag`) merge into one undo step.
+  void moveStrokes(const std::vector<std::size_t>& strokes, const Vec2& d, int drag);
+  Tool tool() const;
+  void setTool(Tool tool);  // as its toolbar button does
+  QAction* toolAction(Tool tool) const;
   /// Called after any change of the document: repaint, plot, status.
   void documentChanged();
   void selectSegment(int stroke, int piece);  // -1, -1: none
@@ -93,6 +107,7 @@ class MainWindow : public QMainWindow {
  private:
   struct BackgroundFit {
     std::uint64_t id = 0;
+    Vec2 fitted_at = Vec2::Zero();  // the stroke's first raw sample as fitted (it may move meanwhile)
     FitOptions options;
     std::optional<FitResult> fit;
     std::string error;
@@ -101,6 +116,8 @@ class MainWindow : public QMainWindow {
   };
   void takeBackgroundFit(QFutureWatcher<BackgroundFit>* watcher);
   void buildMenus();
+  void buildToolBar();
+  void applyCombSettings();  // the comb dock's settings to the canvas
   void showError(const QString& what);
   void autosave();
   void updatePreview();  // live fit of the stroke being drawn, as often as time allows
@@ -117,6 +134,8 @@ class MainWindow : public QMainWindow {
   qint64 m_preview_at = 0;     // when it ran (ms since epoch)
   ParameterPanel* m_parameters = nullptr;
   ConstructionPanel* m_construction_panel = nullptr;
+  CombPanel* m_comb_panel = nullptr;
+  QActionGroup* m_tools = nullptr;
   int m_selected_construction = -1;
   std::optional<Construction> m_handle_drag_before;  // the construction as it was when a handle drag began
   QUndoStack* m_undo = nullptr;

@@ -64,7 +64,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   m_alpha_slider->setRange(sliderTicks(-kAlphaRange), sliderTicks(kAlphaRange));
   m_alpha_slider->setTracking(false);
   form->addRow("", m_alpha_slider);
-  setSegmentAlpha(false, 0.0, "right-click a segment first");
+  setSegmentAlpha(false, 0.0, "select a segment first (click it with V, or right-click it)");
   connect(m_alpha, &QDoubleSpinBox::valueChanged, this, [this](double a) {
     if (m_updating) return;
     m_updating = true;

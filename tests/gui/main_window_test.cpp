@@ -28,40 +28,10 @@
 #include "app/gui/chart.h"
 #include "app/gui/main_window.h"
 #include "app/gui/parameter_panel.h"
+#include "tests/gui/window_test_support.h"
 
 namespace la::gui {
 namespace {
-
-// A wavy stroke across the canvas in widget coordinates.
-std::vector<QPoint> wave(int n = 120) {
-  std::vector<QPoint> pts;
-  for (int i = 0; i < n; ++i) {
-    const double x = 60 + 5.0 * i;
-    pts.emplace_back(static_cast<int>(x), static_cast<int>(300 + 90 * std::sin(x / 110.0)));
-  }
-  return pts;
-}
-
-void drawWithMouse(QWidget* canvas, const std::vector<QPoint>& pts) {
-  QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, pts.front());
-  for (std::size_t i = 1; i < pts.size(); ++i) {
-    QMouseEvent move(QEvent::MouseMove, pts[i], canvas->mapToGlobal(pts[i]), Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
-    QApplication::sendEvent(canvas, &move);
-  }
-  QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, pts.back());
-}
-
-void drawWithPen(QWidget* canvas, const std::vector<QPoint>& pts) {
-  const QPointingDevice* pen = QPointingDevice::primaryPointingDevice();
-  auto send = [&](QEvent::Type type, QPointF pos, double pressure) {
-    QTabletEvent e(type, pen, pos, canvas->mapToGlobal(pos), pressure, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
-                   Qt::NoModifier, type == QEvent::TabletRelease ? Qt::NoButton : Qt::LeftButton, Qt::LeftButton);
-    QApplication::sendEvent(canvas, &e);
-  };
-  send(QEvent::TabletPress, pts.front(), 0.3);
-  for (std::size_t i = 1; i + 1 < pts.size(); ++i) send(QEvent::TabletMove, pts[i], 0.3 + 0.4 * i / pts.size());
-  send(QEvent::TabletRelease, pts.back(), 0.0);
-}
 
 // The first segment whose alpha the user may steer (a 3-point piece, not a circle), or -1.
 int firstSteerablePiece(const FitResult& fit) {
@@ -70,27 +40,6 @@ int firstSteerablePiece(const FitResult& fit) {
       return static_cast<int>(i);
   return -1;
 }
-
-class MainWindowTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    qputenv("LAFAIR_NO_DIALOGS", "1");  // errors go to the status bar, not a modal box
-    window = std::make_unique<MainWindow>();
-    window->resize(1100, 760);
-    window->show();
-    ASSERT_TRUE(dir.isValid());
-  }
-  // The last stroke's fit as it ends up (stage 7 done: it runs off the UI thread).
-  const FitResult& lastFit() {
-    window->finishBackgroundFits();
-    const auto& s = window->document().strokes();
-    EXPECT_FALSE(s.empty());
-    EXPECT_TRUE(s.back().fit.has_value()) << s.back().error;
-    return *s.back().fit;
-  }
-  std::unique_ptr<MainWindow> window;
-  QTemporaryDir dir;
-};
 
 // Fields that behave (issue 17, part 4): no field has the focus at start, the canvas has
 // it; a tolerance typed into its field applies on Enter, not at every keystroke ("1.25"
@@ -188,7 +137,7 @@ TEST_F(MainWindowTest, DeleteRemovesTheSelectedStrokeUndoably) {
   const std::uint64_t second = window->document().strokes()[1].id;
   QAction* remove = nullptr;
   for (QAction* a : window->findChildren<QAction*>())
-    if (a->text() == "&Delete stroke") remove = a;
+    if (a->text() == "&Delete") remove = a;
   ASSERT_NE(remove, nullptr);
   EXPECT_TRUE(remove->shortcuts().contains(QKeySequence(QKeySequence::Delete)));
   remove->trigger();  // nothing selected: nothing goes
