@@ -24,8 +24,11 @@
 #include <QTimer>
 #include <QUndoCommand>
 #include <QUndoStack>
+#include <QSpinBox>
+#include <QWidgetAction>
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include "app/gui/canvas.h"
@@ -33,6 +36,7 @@
 #include "app/gui/construction_panel.h"
 #include "app/gui/curvature_plot.h"
 #include "app/gui/lcg_plot.h"
+#include "app/gui/oversketch.h"
 #include "app/gui/parameter_panel.h"
 #include "app/io/curve_export.h"
 #include "app/io/point_file.h"
@@ -69,6 +73,34 @@ class AddStrokeCommand : public QUndoCommand {
   MainWindow* m_window;
   Stroke m_stroke;
   std::size_t m_index = 0;
+};
+
+// An oversketch: stroke `index` replaced by the spliced raw stroke, refitted like a drawn
+// one (provisional now, in full in the background). Undo puts the old stroke back exactly
+// (fit, the user's edits), without a refit.
+class ReplaceStrokeCommand : public QUndoCommand {
+ public:
+  ReplaceStrokeCommand(MainWindow* w, const QString& text, std::size_t index, Stroke raw)
+      : QUndoCommand(text), m_window(w), m_index(index), m_raw(std::move(raw)), m_before(w->document().strokes()[index]) {}
+  void redo() override {
+    Document& d = m_window->document();
+    d.removeStroke(m_index);
+    d.insertStroke(m_index, m_raw, /*provisional=*/true);
+    m_window->fitInBackground(m_index);
+    m_window->documentChanged();
+  }
+  void undo() override {
+    m_window->document().restoreStroke(m_index, m_before);
+    // (its own background fit may have been dropped while it was replaced)
+    if (m_before.provisional) m_window->fitInBackground(m_index);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  std::size_t m_index;
+  Stroke m_raw;
+  DocumentStroke m_before;
 };
 
 // Removes strokes as one step; undo puts them back as they were (fit, the user's edits),
@@ -251,7 +283,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_status = new QLabel("draw with the pen or the mouse (B); V selects and moves, H or Space pans, the wheel zooms");
   statusBar()->addWidget(m_status, 1);
 
-  connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::addStroke);
+  connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::strokeDrawn);
   connect(m_canvas, &Canvas::strokeProgress, this, &MainWindow::updatePreview);
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
   connect(m_canvas, &Canvas::strokesMoved, this, [this](const std::vector<std::size_t>& strokes, const QPointF& d, int drag) {
@@ -362,6 +394,34 @@ void MainWindow::autosave() {
 }
 
 void MainWindow::addStroke(const Stroke& stroke) { m_undo->push(new AddStrokeCommand(this, stroke)); }
+
+void MainWindow::strokeDrawn(const Stroke& stroke) {
+  if (oversketchEnabled()) {
+    const double scale = std::sqrt(std::abs(m_canvas->view().determinant()));  // pixels per world unit
+    if (scale > 0) {
+      if (auto target = findOversketch(m_document, stroke, m_oversketch_reach / scale)) {
+        const char* what = target->splice.closes ? "oversketch (closed the stroke)"
+                           : target->splice.start && target->splice.end ? "oversketch"
+                                                                        : "oversketch (replaced an end)";
+        m_undo->push(new ReplaceStrokeCommand(this, what, target->stroke, std::move(target->splice.raw)));
+        showMessage(QString("%1 of stroke %2 (Edit > Oversketch turns it off)").arg(what).arg(target->stroke + 1));
+        return;
+      }
+    }
+  }
+  addStroke(stroke);
+}
+
+bool MainWindow::oversketchEnabled() const { return m_oversketch && m_oversketch->isChecked(); }
+
+void MainWindow::setOversketch(bool on) { m_oversketch->setChecked(on); }
+
+void MainWindow::setOversketchReach(double pixels) {
+  m_oversketch_reach = pixels;
+  QSettings().setValue("oversketch/reach_px", pixels);
+  if (m_oversketch_reach_box && m_oversketch_reach_box->value() != static_cast<int>(std::lround(pixels)))
+    m_oversketch_reach_box->setValue(static_cast<int>(std::lround(pixels)));
+}
 
 void MainWindow::updatePreview() {
   const Stroke& current = m_canvas->currentStroke();
@@ -907,6 +967,28 @@ void MainWindow::buildMenus() {
   edit->addAction("Select &all", QKeySequence::SelectAll, this, [this] { selectAll(); });
   QAction* none = edit->addAction("&Clear selection", this, [this] { clearSelection(); });
   none->setShortcuts({QKeySequence(Qt::Key_Escape), QKeySequence("Ctrl+Shift+A")});
+  edit->addSeparator();
+  // Oversketch: on by default, as in Inkscape's pencil; the reach is a spin box in the menu.
+  m_oversketch = edit->addAction("&Oversketch");
+  m_oversketch->setObjectName("oversketch");
+  m_oversketch->setCheckable(true);
+  m_oversketch->setToolTip("a stroke drawn from or to an existing curve replaces that part of it");
+  m_oversketch->setChecked(QSettings().value("oversketch/enabled", true).toBool());
+  connect(m_oversketch, &QAction::toggled, this, [](bool on) { QSettings().setValue("oversketch/enabled", on); });
+  m_oversketch_reach = QSettings().value("oversketch/reach_px", kDefaultOversketchReachPixels).toDouble();
+  auto* reach_row = new QWidget;
+  auto* reach_layout = new QHBoxLayout(reach_row);
+  reach_layout->setContentsMargins(24, 2, 8, 2);
+  reach_layout->addWidget(new QLabel("Oversketch reach (px)"));
+  m_oversketch_reach_box = new QSpinBox;
+  m_oversketch_reach_box->setObjectName("oversketch-reach");
+  m_oversketch_reach_box->setRange(1, 50);
+  m_oversketch_reach_box->setValue(static_cast<int>(std::lround(m_oversketch_reach)));
+  reach_layout->addWidget(m_oversketch_reach_box);
+  connect(m_oversketch_reach_box, &QSpinBox::valueChanged, this, [this](int v) { setOversketchReach(v); });
+  auto* reach_action = new QWidgetAction(this);
+  reach_action->setDefaultWidget(reach_row);
+  edit->addAction(reach_action);
   edit->addSeparator();
   QMenu* tools = edit->addMenu("&Tool");
   tools->addActions(m_tools->actions());
