@@ -33,7 +33,11 @@ std::uint64_t nextStrokeId() {
   return next++;
 }
 
+std::atomic<std::uint64_t> next_revision{1};
+
 }  // namespace
+
+void DocumentStroke::touch() { revision = next_revision++; }
 
 void Document::fit(DocumentStroke& s) const {
   try {
@@ -67,6 +71,7 @@ std::string Document::editStroke(std::size_t stroke, Edit&& edit, Remember&& rem
   std::optional<FitResult> edited = edit(*s.fit, &why);
   if (!edited) return why;
   s.fit = std::move(edited);
+  s.touch();
   s.provisional = false;  // the user works on this fit now: a background one would undo it
   remember(s);
   return {};
@@ -104,6 +109,7 @@ std::size_t Document::addStroke(const Stroke& raw) {
 }
 
 void Document::refit(DocumentStroke& s, bool provisional) const {
+  s.touch();
   const bool edited = !s.alpha_overrides.empty() || !s.joint_overrides.empty() || !s.apex_overrides.empty();
   s.provisional = provisional && !edited && options_.polish && options_.g2 != G2Method::kOff;
   if (!s.provisional) {
@@ -139,6 +145,7 @@ bool Document::completeFit(std::uint64_t id, const FitOptions& options, std::opt
     const Vec2 moved = s.raw.samples.empty() ? Vec2::Zero() : Vec2(s.raw.samples.front().p - fitted_at);
     if (fit && moved != Vec2::Zero()) fit = translated(*fit, moved);
     s.fit = std::move(fit);
+    s.touch();
     s.error = s.fit ? std::string() : error;
     s.provisional = false;
     return true;

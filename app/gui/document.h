@@ -26,6 +26,11 @@ struct DocumentStroke {
   /// in the background (completeFit); `id` finds the stroke when that fit comes back.
   std::uint64_t id = 0;
   bool provisional = false;
+  /// Changes with every change of the raw samples or the fit, unique across documents
+  /// (undo's restoreStroke brings a stroke back with the revision it had, as it was): the
+  /// canvas caches what it draws of a stroke by it (app/gui/stroke_drawing.h).
+  std::uint64_t revision = 0;
+  void touch();  // a new revision
 };
 
 class Document {
