@@ -128,10 +128,16 @@ void Document::refit(DocumentStroke& s, bool provisional) const {
   }
 }
 
-void Document::insertStroke(std::size_t index, const Stroke& raw, bool provisional) {
+void Document::insertStroke(std::size_t index, const Stroke& raw, bool provisional, bool unfitted) {
   DocumentStroke s{raw, std::nullopt, {}, {}, {}, {}};
   s.id = nextStrokeId();
-  refit(s, provisional);
+  if (unfitted) {
+    s.touch();
+    s.provisional = true;
+    s.error = "fitting in the background";
+  } else {
+    refit(s, provisional);
+  }
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
 }
 

@@ -49,7 +49,13 @@ class Document {
   void removeStroke(std::size_t index);
   /// Inserts and fits a stroke. `provisional`: where the options ask for stage 7, fits
   /// without it (milliseconds: a pen-up must not wait) and marks the stroke provisional.
-  void insertStroke(std::size_t index, const Stroke& raw, bool provisional = false);
+  /// `unfitted`: no fit at all yet, provisional (a huge stroke: the whole fit is made in
+  /// the background and taken by completeFit; meanwhile its points are shown).
+  void insertStroke(std::size_t index, const Stroke& raw, bool provisional = false, bool unfitted = false);
+  /// Strokes of more samples than this are inserted unfitted by the window: their
+  /// provisional fit alone would hold the UI past a frame (16 ms). From
+  /// gui_paint_benchmark's BM_PenUpProvisionalFit: 8000 samples 6 ms, ~linear.
+  static constexpr std::size_t kOffThreadFitSamples = 16000;
   /// The full fit of provisional stroke `id` (fitStroke with `options`, or the
   /// StrokeError's message), made in the background: taken if that stroke is still
   /// there, still provisional (not edited since) and the options are the same. Returns

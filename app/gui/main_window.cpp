@@ -60,7 +60,8 @@ class AddStrokeCommand : public QUndoCommand {
   AddStrokeCommand(MainWindow* w, Stroke s) : QUndoCommand("draw stroke"), m_window(w), m_stroke(std::move(s)) {}
   void redo() override {
     m_index = m_window->document().strokes().size();
-    m_window->document().insertStroke(m_index, m_stroke, /*provisional=*/true);
+    m_window->document().insertStroke(m_index, m_stroke, /*provisional=*/true,
+                                      /*unfitted=*/m_stroke.samples.size() > Document::kOffThreadFitSamples);
     m_window->fitInBackground(m_index);
     m_window->documentChanged();
   }
@@ -85,7 +86,7 @@ class ReplaceStrokeCommand : public QUndoCommand {
   void redo() override {
     Document& d = m_window->document();
     d.removeStroke(m_index);
-    d.insertStroke(m_index, m_raw, /*provisional=*/true);
+    d.insertStroke(m_index, m_raw, /*provisional=*/true, /*unfitted=*/m_raw.samples.size() > Document::kOffThreadFitSamples);
     m_window->fitInBackground(m_index);
     m_window->documentChanged();
   }
@@ -648,8 +649,12 @@ void MainWindow::documentChanged() {
   m_plot->setFit(last);
   selectSegment(-1, -1);
   selectConstruction(m_selected_construction);
-  if (!last) {
-    m_status->setText(m_document.strokes().empty() ? "no strokes" : "the last stroke could not be fitted");
+  const bool fitting_huge = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
+                                       [](const DocumentStroke& s) { return s.provisional && !s.fit; });
+  if (!last || fitting_huge) {
+    m_status->setText(fitting_huge                   ? "fitting a long stroke in the background (its points are shown)…"
+                      : m_document.strokes().empty() ? "no strokes"
+                                                     : "the last stroke could not be fitted");
     return;
   }
   const QualityFigures& q = last->quality;

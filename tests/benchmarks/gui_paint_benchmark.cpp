@@ -106,6 +106,18 @@ void BM_Repaint50FairedStrokesZoomed(benchmark::State& state) { repaint(state, f
 void BM_Repaint200kPointStroke(benchmark::State& state) { repaint(state, hugeStroke(), false); }
 void BM_Repaint200kPointStrokeZoomed(benchmark::State& state) { repaint(state, hugeStroke(), true); }
 
+// The pen-up fit the UI thread makes of a drawn stroke of N samples (the provisional fit:
+// stages 1-6), to choose where a stroke is fitted off the UI thread instead.
+void BM_PenUpProvisionalFit(benchmark::State& state) {
+  const Stroke s = waveStroke(static_cast<int>(state.range(0)), 0.0, 300.0, 800.0, 120.0, 3u);
+  for (auto _ : state) {
+    Document d;
+    d.insertStroke(0, s, /*provisional=*/true);
+    benchmark::DoNotOptimize(d.strokes().front().fit);
+  }
+}
+BENCHMARK(BM_PenUpProvisionalFit)->Arg(500)->Arg(2000)->Arg(8000)->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_Repaint50FairedStrokes)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Repaint50FairedStrokesZoomed)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Repaint200kPointStroke)->Unit(benchmark::kMillisecond);
