@@ -174,6 +174,7 @@ void Document::setOptions(const FitOptions& options, bool provisional) {
 }
 
 void Document::clear() {
+  units_ = "px";
   strokes_.clear();
   constructions_.clear();
 }
@@ -216,7 +217,7 @@ void Document::save(const QString& path) const {
   nlohmann::json constructions = nlohmann::json::array();
   for (const Construction& c : constructions_) constructions.push_back(c.toJson());
   const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", fitOptionsToJson(options_)},
-                              {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}};
+                              {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}, {"units", units_}};
   writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
 }
 
@@ -274,6 +275,7 @@ void Document::load(const QString& path, bool provisional) {
   for (std::size_t i = 0; i < saved.size(); ++i)
     constructions.push_back(Construction::fromJson(saved[i], name + ": constructions[" + std::to_string(i) + "]"));
   options_ = options;
+  units_ = doc.value("units", std::string("px"));
   strokes_ = std::move(loaded);
   constructions_ = std::move(constructions);
   for (DocumentStroke& s : strokes_) {

@@ -43,6 +43,10 @@ class Document {
   void replaceConstruction(std::size_t index, Construction construction);
   void removeConstruction(std::size_t index);
   const FitOptions& options() const { return options_; }
+  /// The units of the world coordinates: "px", "mm", "in", "pt" or "" (unitless); saved
+  /// in the sketch file, "px" by default; exports state them (DXF $INSUNITS).
+  const std::string& units() const { return units_; }
+  void setUnits(const std::string& units) { units_ = units; }
 
   /// Adds a stroke and fits it; returns its index.
   std::size_t addStroke(const Stroke& raw);
@@ -106,6 +110,7 @@ class Document {
   std::vector<DocumentStroke> strokes_;
   std::vector<Construction> constructions_;
   FitOptions options_ = appOptions();
+  std::string units_ = "px";
 };
 
 }  // namespace la::gui

@@ -25,6 +25,7 @@
 #include <QUndoCommand>
 #include <QUndoStack>
 #include <QSpinBox>
+#include <QComboBox>
 #include <QWidgetAction>
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
@@ -54,6 +55,8 @@ constexpr int kPreviewMinIntervalMs = 30;
 constexpr double kPreviewCostFactor = 4.0;
 constexpr int kPreviewMinPoints = 8;
 constexpr int kRecentFiles = 8;
+// Exported Bezier paths stay within this fraction of the fit tolerance of the LA curves.
+constexpr double kExportToleranceOfFit = 0.1;
 
 class AddStrokeCommand : public QUndoCommand {
  public:
@@ -375,7 +378,19 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_autosave, &QTimer::timeout, this, &MainWindow::autosave);
   m_autosave->start(kAutosaveMs);
   buildToolBar();
+  m_export_points = QSettings().value("export/points", false).toBool();
+  m_export_comb = QSettings().value("export/comb", false).toBool();
   buildMenus();
+  // The document's units, in the status bar: exports state them (DXF $INSUNITS).
+  auto* units = new QComboBox;
+  units->setObjectName("units");
+  units->setToolTip("the units of the sketch's coordinates (saved with it; DXF export states them)");
+  for (const char* u : {"px", "mm", "in", "pt", "unitless"}) units->addItem(u);
+  statusBar()->addPermanentWidget(units);
+  connect(units, &QComboBox::currentTextChanged, this, [this](const QString& u) {
+    m_document.setUnits(u == "unitless" ? std::string() : u.toStdString());
+    m_dirty = true;
+  });
   resize(1100, 760);
 }
 
@@ -792,6 +807,8 @@ bool MainWindow::openFile(const QString& path) {
   fitProvisionalInBackground();
   m_canvas->setDocument(&m_document);
   m_parameters->setOptions(m_document.options());
+  if (auto* units = findChild<QComboBox*>("units"))
+    units->setCurrentText(m_document.units().empty() ? QString("unitless") : QString::fromStdString(m_document.units()));
   m_undo->clear();
   m_path = path;
   documentChanged();
@@ -831,10 +848,20 @@ bool MainWindow::importPoints(const QString& path) {
   return true;
 }
 
+void MainWindow::setExportExtras(bool points, bool comb) {
+  m_export_points = points;
+  m_export_comb = comb;
+  QSettings().setValue("export/points", points);
+  QSettings().setValue("export/comb", comb);
+}
+
 bool MainWindow::exportFile(const QString& path, bool selected_only) {
   finishBackgroundFits();  // the curves as they end up, not the provisional ones
-  const bool only_construction = selected_only && m_selected_stroke < 0 && m_selected_construction >= 0;
-  if (selected_only && m_selected_stroke < 0 && !only_construction) {
+  // the selection: the Select tool's strokes, else the selected segment's stroke
+  std::vector<std::size_t> chosen = selectedStrokes();
+  if (chosen.empty() && m_selected_stroke >= 0) chosen.push_back(static_cast<std::size_t>(m_selected_stroke));
+  const bool only_construction = selected_only && chosen.empty() && m_selected_construction >= 0;
+  if (selected_only && chosen.empty() && !only_construction) {
     showError("select a curve first (click it with V or right-click it, or click a construction's handle)");
     return false;
   }
@@ -842,9 +869,10 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   std::vector<std::vector<Vec2>> points;
   std::vector<CurveOrError> entries;
   std::vector<AlpCurve> alps;
+  double fit_tolerance = INFINITY;  // the smallest of the exported strokes' fits (absolute)
   nlohmann::json alp_entries = nlohmann::json::array();
   for (std::size_t k = 0; k < m_document.strokes().size() && !only_construction; ++k) {
-    if (selected_only && static_cast<int>(k) != m_selected_stroke) continue;
+    if (selected_only && std::find(chosen.begin(), chosen.end(), k) == chosen.end()) continue;
     const DocumentStroke& s = m_document.strokes()[k];
     if (!s.fit) {
       entries.push_back({std::nullopt, s.error});
@@ -852,6 +880,7 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
     }
     curves.push_back(s.fit->curve);
     points.push_back(s.fit->cleaned.points);
+    fit_tolerance = std::min(fit_tolerance, s.fit->tolerance);
     entries.push_back({s.fit->curve, {}});
   }
   for (std::size_t k = 0; k < m_document.constructions().size(); ++k) {
@@ -879,10 +908,20 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   try {
     if (ext == "svg") {
       SvgOptions o;
-      o.show_comb = m_canvas->layers().comb;
+      o.show_points = m_export_points;
+      o.show_comb = m_export_comb;
+      // a tenth of the fit tolerance: the Bezier path is as close to the LA curve as the
+      // curve is to the points, ten times over (constructions alone: the writer's default)
+      if (std::isfinite(fit_tolerance) && fit_tolerance > 0) o.bezier_tolerance_absolute = kExportToleranceOfFit * fit_tolerance;
       writeFileAtomically(path.toStdString(), exportCurvesToSvg(chains, points, o));
     } else if (ext == "dxf") {
-      writeFileAtomically(path.toStdString(), exportCurvesToDxf(chains));
+      DxfOptions o;
+      if (std::isfinite(fit_tolerance) && fit_tolerance > 0) o.absolute_tolerance = kExportToleranceOfFit * fit_tolerance;
+      const std::string& units = m_document.units();
+      o.units = units == "mm" ? DxfUnits::kMillimeters : units == "in" ? DxfUnits::kInches : DxfUnits::kUnitless;
+      if (units == "px" || units == "pt")
+        o.units_comment = "lafair: drawing units are " + units + " (DXF has no such unit: $INSUNITS 0, unitless)";
+      writeFileAtomically(path.toStdString(), exportCurvesToDxf(chains, m_export_points ? points : std::vector<std::vector<Vec2>>{}, o));
     } else if (ext == "csv") {
       writeFileAtomically(path.toStdString(), exportCurvesToCsv(chains));
     } else if (ext == "json" && alps.empty()) {
@@ -949,6 +988,15 @@ void MainWindow::buildMenus() {
     const QString p = QFileDialog::getSaveFileName(this, "Export selected curve", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
     if (!p.isEmpty()) exportFile(p, true);
   });
+  QMenu* extras = file->addMenu("Export &with");
+  QAction* with_points = extras->addAction("the &points (SVG and DXF)");
+  with_points->setCheckable(true);
+  with_points->setChecked(m_export_points);
+  connect(with_points, &QAction::toggled, this, [this](bool on) { setExportExtras(on, m_export_comb); });
+  QAction* with_comb = extras->addAction("the curvature &comb (SVG)");
+  with_comb->setCheckable(true);
+  with_comb->setChecked(m_export_comb);
+  connect(with_comb, &QAction::toggled, this, [this](bool on) { setExportExtras(m_export_points, on); });
   file->addAction("Export &picture (PNG)…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export picture", {}, "PNG (*.png)");
     if (!p.isEmpty()) exportPng(p);

@@ -52,6 +52,8 @@ class MainWindow : public QMainWindow {
   bool importPoints(const QString& path);
   /// Format from the extension: svg, dxf, json, csv. All curves, or only the selected stroke's.
   bool exportFile(const QString& path, bool selected_only = false);
+  /// What an SVG export adds to the curves (remembered in QSettings; off by default).
+  void setExportExtras(bool points, bool comb);
   bool exportPng(const QString& path);   // the canvas and the plots, side by side
   bool loadBackground(const QString& path);  // a raster image to trace over
   /// Offers the autosaved sketch if the last session did not end cleanly (no dialog
@@ -136,6 +138,7 @@ class MainWindow : public QMainWindow {
   Document m_document;
   Canvas* m_canvas = nullptr;
   QAction* m_oversketch = nullptr;
+  bool m_export_points = false, m_export_comb = false;
   QSpinBox* m_oversketch_reach_box = nullptr;
   double m_oversketch_reach = 8.0;  // pixels (kDefaultOversketchReachPixels)
   CurvaturePlot* m_plot = nullptr;
