@@ -84,8 +84,8 @@ TEST(AlpExport, SvgAndDxfShapes) {
   SvgOptions options;
   options.show_comb = true;
   const std::string svg = alpCurvesToSvg({c}, {{c.start(), c.end()}}, options);
-  EXPECT_NE(svg.find("<g id=\"fitted-curves\""), std::string::npos);
-  EXPECT_NE(svg.find("<g id=\"curvature-comb\""), std::string::npos);
+  EXPECT_NE(svg.find("<g id=\"curves\""), std::string::npos);
+  EXPECT_NE(svg.find("<g id=\"comb\""), std::string::npos);
   EXPECT_NE(svg.find(" C"), std::string::npos);
   const std::string dxf = alpCurvesToDxf({c});
   EXPECT_NE(dxf.find("SPLINE"), std::string::npos);

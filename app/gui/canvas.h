@@ -18,6 +18,7 @@
 #include "app/gui/comb.h"
 #include "app/gui/document.h"
 #include "app/gui/selection.h"
+#include "app/gui/stroke_drawing.h"
 #include "app/gui/tools.h"
 
 namespace la::gui {
@@ -116,8 +117,10 @@ class Canvas : public QWidget {
   void extendStroke(const QPointF& pos, double pressure, double time_ms, double tilt_x = NAN, double tilt_y = NAN);
   void zoomAbout(const QPointF& center, double factor);
   void endStroke();
-  // `stroke` is the document's index (selection, triangles), -1 for the preview.
-  void paintCurve(QPainter& p, const FitResult& fit, int stroke) const;
+  // `stroke` is the document's index (selection, triangles), -1 for the preview;
+  // `drawing` its cached drawing (none for the preview: computed here).
+  void paintCurve(QPainter& p, const FitResult& fit, int stroke, const StrokeDrawing* drawing = nullptr) const;
+  double viewScale() const { return std::sqrt(std::abs(m_view.determinant())); }  // pixels per world unit
   // The triangles layer, or the selected segment: its control triangle and apex handle.
   bool showsTriangle(int stroke, int piece) const;
   bool pickHandle(const QPointF& at);  // a construction handle within reach: sets m_drag_*
@@ -134,6 +137,7 @@ class Canvas : public QWidget {
   void paintComb(QPainter& p, const Comb& comb) const;
 
   const Document* m_document = nullptr;
+  mutable StrokeDrawings m_drawings;  // what is drawn of each stroke, by revision (world coordinates)
   Layers m_layers;
   QTransform m_view;          // world -> widget
   bool m_drawing = false;

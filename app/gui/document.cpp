@@ -33,7 +33,11 @@ std::uint64_t nextStrokeId() {
   return next++;
 }
 
+std::atomic<std::uint64_t> next_revision{1};
+
 }  // namespace
+
+void DocumentStroke::touch() { revision = next_revision++; }
 
 void Document::fit(DocumentStroke& s) const {
   try {
@@ -67,6 +71,7 @@ std::string Document::editStroke(std::size_t stroke, Edit&& edit, Remember&& rem
   std::optional<FitResult> edited = edit(*s.fit, &why);
   if (!edited) return why;
   s.fit = std::move(edited);
+  s.touch();
   s.provisional = false;  // the user works on this fit now: a background one would undo it
   remember(s);
   return {};
@@ -104,6 +109,7 @@ std::size_t Document::addStroke(const Stroke& raw) {
 }
 
 void Document::refit(DocumentStroke& s, bool provisional) const {
+  s.touch();
   const bool edited = !s.alpha_overrides.empty() || !s.joint_overrides.empty() || !s.apex_overrides.empty();
   s.provisional = provisional && !edited && options_.polish && options_.g2 != G2Method::kOff;
   if (!s.provisional) {
@@ -122,10 +128,16 @@ void Document::refit(DocumentStroke& s, bool provisional) const {
   }
 }
 
-void Document::insertStroke(std::size_t index, const Stroke& raw, bool provisional) {
+void Document::insertStroke(std::size_t index, const Stroke& raw, bool provisional, bool unfitted) {
   DocumentStroke s{raw, std::nullopt, {}, {}, {}, {}};
   s.id = nextStrokeId();
-  refit(s, provisional);
+  if (unfitted) {
+    s.touch();
+    s.provisional = true;
+    s.error = "fitting in the background";
+  } else {
+    refit(s, provisional);
+  }
   strokes_.insert(strokes_.begin() + static_cast<long>(std::min(index, strokes_.size())), std::move(s));
 }
 
@@ -139,6 +151,7 @@ bool Document::completeFit(std::uint64_t id, const FitOptions& options, std::opt
     const Vec2 moved = s.raw.samples.empty() ? Vec2::Zero() : Vec2(s.raw.samples.front().p - fitted_at);
     if (fit && moved != Vec2::Zero()) fit = translated(*fit, moved);
     s.fit = std::move(fit);
+    s.touch();
     s.error = s.fit ? std::string() : error;
     s.provisional = false;
     return true;
@@ -161,6 +174,7 @@ void Document::setOptions(const FitOptions& options, bool provisional) {
 }
 
 void Document::clear() {
+  units_ = "px";
   strokes_.clear();
   constructions_.clear();
 }
@@ -203,7 +217,7 @@ void Document::save(const QString& path) const {
   nlohmann::json constructions = nlohmann::json::array();
   for (const Construction& c : constructions_) constructions.push_back(c.toJson());
   const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", fitOptionsToJson(options_)},
-                              {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}};
+                              {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}, {"units", units_}};
   writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
 }
 
@@ -261,6 +275,7 @@ void Document::load(const QString& path, bool provisional) {
   for (std::size_t i = 0; i < saved.size(); ++i)
     constructions.push_back(Construction::fromJson(saved[i], name + ": constructions[" + std::to_string(i) + "]"));
   options_ = options;
+  units_ = doc.value("units", std::string("px"));
   strokes_ = std::move(loaded);
   constructions_ = std::move(constructions);
   for (DocumentStroke& s : strokes_) {

@@ -26,6 +26,11 @@ struct DocumentStroke {
   /// in the background (completeFit); `id` finds the stroke when that fit comes back.
   std::uint64_t id = 0;
   bool provisional = false;
+  /// Changes with every change of the raw samples or the fit, unique across documents
+  /// (undo's restoreStroke brings a stroke back with the revision it had, as it was): the
+  /// canvas caches what it draws of a stroke by it (app/gui/stroke_drawing.h).
+  std::uint64_t revision = 0;
+  void touch();  // a new revision
 };
 
 class Document {
@@ -38,13 +43,23 @@ class Document {
   void replaceConstruction(std::size_t index, Construction construction);
   void removeConstruction(std::size_t index);
   const FitOptions& options() const { return options_; }
+  /// The units of the world coordinates: "px", "mm", "in", "pt" or "" (unitless); saved
+  /// in the sketch file, "px" by default; exports state them (DXF $INSUNITS).
+  const std::string& units() const { return units_; }
+  void setUnits(const std::string& units) { units_ = units; }
 
   /// Adds a stroke and fits it; returns its index.
   std::size_t addStroke(const Stroke& raw);
   void removeStroke(std::size_t index);
   /// Inserts and fits a stroke. `provisional`: where the options ask for stage 7, fits
   /// without it (milliseconds: a pen-up must not wait) and marks the stroke provisional.
-  void insertStroke(std::size_t index, const Stroke& raw, bool provisional = false);
+  /// `unfitted`: no fit at all yet, provisional (a huge stroke: the whole fit is made in
+  /// the background and taken by completeFit; meanwhile its points are shown).
+  void insertStroke(std::size_t index, const Stroke& raw, bool provisional = false, bool unfitted = false);
+  /// Strokes of more samples than this are inserted unfitted by the window: their
+  /// provisional fit alone would hold the UI past a frame (16 ms). From
+  /// gui_paint_benchmark's BM_PenUpProvisionalFit: 8000 samples 6 ms, ~linear.
+  static constexpr std::size_t kOffThreadFitSamples = 16000;
   /// The full fit of provisional stroke `id` (fitStroke with `options`, or the
   /// StrokeError's message), made in the background: taken if that stroke is still
   /// there, still provisional (not edited since) and the options are the same. Returns
@@ -95,6 +110,7 @@ class Document {
   std::vector<DocumentStroke> strokes_;
   std::vector<Construction> constructions_;
   FitOptions options_ = appOptions();
+  std::string units_ = "px";
 };
 
 }  // namespace la::gui

@@ -24,8 +24,12 @@
 #include <QTimer>
 #include <QUndoCommand>
 #include <QUndoStack>
+#include <QSpinBox>
+#include <QComboBox>
+#include <QWidgetAction>
 #include <QtConcurrent/QtConcurrentRun>
 #include <algorithm>
+#include <cmath>
 #include <functional>
 
 #include "app/gui/canvas.h"
@@ -33,6 +37,7 @@
 #include "app/gui/construction_panel.h"
 #include "app/gui/curvature_plot.h"
 #include "app/gui/lcg_plot.h"
+#include "app/gui/oversketch.h"
 #include "app/gui/parameter_panel.h"
 #include "app/io/curve_export.h"
 #include "app/io/point_file.h"
@@ -50,13 +55,16 @@ constexpr int kPreviewMinIntervalMs = 30;
 constexpr double kPreviewCostFactor = 4.0;
 constexpr int kPreviewMinPoints = 8;
 constexpr int kRecentFiles = 8;
+// Exported Bezier paths stay within this fraction of the fit tolerance of the LA curves.
+constexpr double kExportToleranceOfFit = 0.1;
 
 class AddStrokeCommand : public QUndoCommand {
  public:
   AddStrokeCommand(MainWindow* w, Stroke s) : QUndoCommand("draw stroke"), m_window(w), m_stroke(std::move(s)) {}
   void redo() override {
     m_index = m_window->document().strokes().size();
-    m_window->document().insertStroke(m_index, m_stroke, /*provisional=*/true);
+    m_window->document().insertStroke(m_index, m_stroke, /*provisional=*/true,
+                                      /*unfitted=*/m_stroke.samples.size() > Document::kOffThreadFitSamples);
     m_window->fitInBackground(m_index);
     m_window->documentChanged();
   }
@@ -69,6 +77,34 @@ class AddStrokeCommand : public QUndoCommand {
   MainWindow* m_window;
   Stroke m_stroke;
   std::size_t m_index = 0;
+};
+
+// An oversketch: stroke `index` replaced by the spliced raw stroke, refitted like a drawn
+// one (provisional now, in full in the background). Undo puts the old stroke back exactly
+// (fit, the user's edits), without a refit.
+class ReplaceStrokeCommand : public QUndoCommand {
+ public:
+  ReplaceStrokeCommand(MainWindow* w, const QString& text, std::size_t index, Stroke raw)
+      : QUndoCommand(text), m_window(w), m_index(index), m_raw(std::move(raw)), m_before(w->document().strokes()[index]) {}
+  void redo() override {
+    Document& d = m_window->document();
+    d.removeStroke(m_index);
+    d.insertStroke(m_index, m_raw, /*provisional=*/true, /*unfitted=*/m_raw.samples.size() > Document::kOffThreadFitSamples);
+    m_window->fitInBackground(m_index);
+    m_window->documentChanged();
+  }
+  void undo() override {
+    m_window->document().restoreStroke(m_index, m_before);
+    // (its own background fit may have been dropped while it was replaced)
+    if (m_before.provisional) m_window->fitInBackground(m_index);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  std::size_t m_index;
+  Stroke m_raw;
+  DocumentStroke m_before;
 };
 
 // Removes strokes as one step; undo puts them back as they were (fit, the user's edits),
@@ -251,7 +287,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_status = new QLabel("draw with the pen or the mouse (B); V selects and moves, H or Space pans, the wheel zooms");
   statusBar()->addWidget(m_status, 1);
 
-  connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::addStroke);
+  connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::strokeDrawn);
   connect(m_canvas, &Canvas::strokeProgress, this, &MainWindow::updatePreview);
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
   connect(m_canvas, &Canvas::strokesMoved, this, [this](const std::vector<std::size_t>& strokes, const QPointF& d, int drag) {
@@ -342,7 +378,19 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(m_autosave, &QTimer::timeout, this, &MainWindow::autosave);
   m_autosave->start(kAutosaveMs);
   buildToolBar();
+  m_export_points = QSettings().value("export/points", false).toBool();
+  m_export_comb = QSettings().value("export/comb", false).toBool();
   buildMenus();
+  // The document's units, in the status bar: exports state them (DXF $INSUNITS).
+  auto* units = new QComboBox;
+  units->setObjectName("units");
+  units->setToolTip("the units of the sketch's coordinates (saved with it; DXF export states them)");
+  for (const char* u : {"px", "mm", "in", "pt", "unitless"}) units->addItem(u);
+  statusBar()->addPermanentWidget(units);
+  connect(units, &QComboBox::currentTextChanged, this, [this](const QString& u) {
+    m_document.setUnits(u == "unitless" ? std::string() : u.toStdString());
+    m_dirty = true;
+  });
   resize(1100, 760);
 }
 
@@ -362,6 +410,34 @@ void MainWindow::autosave() {
 }
 
 void MainWindow::addStroke(const Stroke& stroke) { m_undo->push(new AddStrokeCommand(this, stroke)); }
+
+void MainWindow::strokeDrawn(const Stroke& stroke) {
+  if (oversketchEnabled()) {
+    const double scale = std::sqrt(std::abs(m_canvas->view().determinant()));  // pixels per world unit
+    if (scale > 0) {
+      if (auto target = findOversketch(m_document, stroke, m_oversketch_reach / scale)) {
+        const char* what = target->splice.closes ? "oversketch (closed the stroke)"
+                           : target->splice.start && target->splice.end ? "oversketch"
+                                                                        : "oversketch (replaced an end)";
+        m_undo->push(new ReplaceStrokeCommand(this, what, target->stroke, std::move(target->splice.raw)));
+        showMessage(QString("%1 of stroke %2 (Edit > Oversketch turns it off)").arg(what).arg(target->stroke + 1));
+        return;
+      }
+    }
+  }
+  addStroke(stroke);
+}
+
+bool MainWindow::oversketchEnabled() const { return m_oversketch && m_oversketch->isChecked(); }
+
+void MainWindow::setOversketch(bool on) { m_oversketch->setChecked(on); }
+
+void MainWindow::setOversketchReach(double pixels) {
+  m_oversketch_reach = pixels;
+  QSettings().setValue("oversketch/reach_px", pixels);
+  if (m_oversketch_reach_box && m_oversketch_reach_box->value() != static_cast<int>(std::lround(pixels)))
+    m_oversketch_reach_box->setValue(static_cast<int>(std::lround(pixels)));
+}
 
 void MainWindow::updatePreview() {
   const Stroke& current = m_canvas->currentStroke();
@@ -588,8 +664,12 @@ void MainWindow::documentChanged() {
   m_plot->setFit(last);
   selectSegment(-1, -1);
   selectConstruction(m_selected_construction);
-  if (!last) {
-    m_status->setText(m_document.strokes().empty() ? "no strokes" : "the last stroke could not be fitted");
+  const bool fitting_huge = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
+                                       [](const DocumentStroke& s) { return s.provisional && !s.fit; });
+  if (!last || fitting_huge) {
+    m_status->setText(fitting_huge                   ? "fitting a long stroke in the background (its points are shown)…"
+                      : m_document.strokes().empty() ? "no strokes"
+                                                     : "the last stroke could not be fitted");
     return;
   }
   const QualityFigures& q = last->quality;
@@ -727,6 +807,8 @@ bool MainWindow::openFile(const QString& path) {
   fitProvisionalInBackground();
   m_canvas->setDocument(&m_document);
   m_parameters->setOptions(m_document.options());
+  if (auto* units = findChild<QComboBox*>("units"))
+    units->setCurrentText(m_document.units().empty() ? QString("unitless") : QString::fromStdString(m_document.units()));
   m_undo->clear();
   m_path = path;
   documentChanged();
@@ -766,10 +848,20 @@ bool MainWindow::importPoints(const QString& path) {
   return true;
 }
 
+void MainWindow::setExportExtras(bool points, bool comb) {
+  m_export_points = points;
+  m_export_comb = comb;
+  QSettings().setValue("export/points", points);
+  QSettings().setValue("export/comb", comb);
+}
+
 bool MainWindow::exportFile(const QString& path, bool selected_only) {
   finishBackgroundFits();  // the curves as they end up, not the provisional ones
-  const bool only_construction = selected_only && m_selected_stroke < 0 && m_selected_construction >= 0;
-  if (selected_only && m_selected_stroke < 0 && !only_construction) {
+  // the selection: the Select tool's strokes, else the selected segment's stroke
+  std::vector<std::size_t> chosen = selectedStrokes();
+  if (chosen.empty() && m_selected_stroke >= 0) chosen.push_back(static_cast<std::size_t>(m_selected_stroke));
+  const bool only_construction = selected_only && chosen.empty() && m_selected_construction >= 0;
+  if (selected_only && chosen.empty() && !only_construction) {
     showError("select a curve first (click it with V or right-click it, or click a construction's handle)");
     return false;
   }
@@ -777,9 +869,10 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   std::vector<std::vector<Vec2>> points;
   std::vector<CurveOrError> entries;
   std::vector<AlpCurve> alps;
+  double fit_tolerance = INFINITY;  // the smallest of the exported strokes' fits (absolute)
   nlohmann::json alp_entries = nlohmann::json::array();
   for (std::size_t k = 0; k < m_document.strokes().size() && !only_construction; ++k) {
-    if (selected_only && static_cast<int>(k) != m_selected_stroke) continue;
+    if (selected_only && std::find(chosen.begin(), chosen.end(), k) == chosen.end()) continue;
     const DocumentStroke& s = m_document.strokes()[k];
     if (!s.fit) {
       entries.push_back({std::nullopt, s.error});
@@ -787,6 +880,7 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
     }
     curves.push_back(s.fit->curve);
     points.push_back(s.fit->cleaned.points);
+    fit_tolerance = std::min(fit_tolerance, s.fit->tolerance);
     entries.push_back({s.fit->curve, {}});
   }
   for (std::size_t k = 0; k < m_document.constructions().size(); ++k) {
@@ -814,10 +908,20 @@ bool MainWindow::exportFile(const QString& path, bool selected_only) {
   try {
     if (ext == "svg") {
       SvgOptions o;
-      o.show_comb = m_canvas->layers().comb;
+      o.show_points = m_export_points;
+      o.show_comb = m_export_comb;
+      // a tenth of the fit tolerance: the Bezier path is as close to the LA curve as the
+      // curve is to the points, ten times over (constructions alone: the writer's default)
+      if (std::isfinite(fit_tolerance) && fit_tolerance > 0) o.bezier_tolerance_absolute = kExportToleranceOfFit * fit_tolerance;
       writeFileAtomically(path.toStdString(), exportCurvesToSvg(chains, points, o));
     } else if (ext == "dxf") {
-      writeFileAtomically(path.toStdString(), exportCurvesToDxf(chains));
+      DxfOptions o;
+      if (std::isfinite(fit_tolerance) && fit_tolerance > 0) o.absolute_tolerance = kExportToleranceOfFit * fit_tolerance;
+      const std::string& units = m_document.units();
+      o.units = units == "mm" ? DxfUnits::kMillimeters : units == "in" ? DxfUnits::kInches : DxfUnits::kUnitless;
+      if (units == "px" || units == "pt")
+        o.units_comment = "lafair: drawing units are " + units + " (DXF has no such unit: $INSUNITS 0, unitless)";
+      writeFileAtomically(path.toStdString(), exportCurvesToDxf(chains, m_export_points ? points : std::vector<std::vector<Vec2>>{}, o));
     } else if (ext == "csv") {
       writeFileAtomically(path.toStdString(), exportCurvesToCsv(chains));
     } else if (ext == "json" && alps.empty()) {
@@ -884,6 +988,15 @@ void MainWindow::buildMenus() {
     const QString p = QFileDialog::getSaveFileName(this, "Export selected curve", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
     if (!p.isEmpty()) exportFile(p, true);
   });
+  QMenu* extras = file->addMenu("Export &with");
+  QAction* with_points = extras->addAction("the &points (SVG and DXF)");
+  with_points->setCheckable(true);
+  with_points->setChecked(m_export_points);
+  connect(with_points, &QAction::toggled, this, [this](bool on) { setExportExtras(on, m_export_comb); });
+  QAction* with_comb = extras->addAction("the curvature &comb (SVG)");
+  with_comb->setCheckable(true);
+  with_comb->setChecked(m_export_comb);
+  connect(with_comb, &QAction::toggled, this, [this](bool on) { setExportExtras(m_export_points, on); });
   file->addAction("Export &picture (PNG)…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export picture", {}, "PNG (*.png)");
     if (!p.isEmpty()) exportPng(p);
@@ -907,6 +1020,28 @@ void MainWindow::buildMenus() {
   edit->addAction("Select &all", QKeySequence::SelectAll, this, [this] { selectAll(); });
   QAction* none = edit->addAction("&Clear selection", this, [this] { clearSelection(); });
   none->setShortcuts({QKeySequence(Qt::Key_Escape), QKeySequence("Ctrl+Shift+A")});
+  edit->addSeparator();
+  // Oversketch: on by default, as in Inkscape's pencil; the reach is a spin box in the menu.
+  m_oversketch = edit->addAction("&Oversketch");
+  m_oversketch->setObjectName("oversketch");
+  m_oversketch->setCheckable(true);
+  m_oversketch->setToolTip("a stroke drawn from or to an existing curve replaces that part of it");
+  m_oversketch->setChecked(QSettings().value("oversketch/enabled", true).toBool());
+  connect(m_oversketch, &QAction::toggled, this, [](bool on) { QSettings().setValue("oversketch/enabled", on); });
+  m_oversketch_reach = QSettings().value("oversketch/reach_px", kDefaultOversketchReachPixels).toDouble();
+  auto* reach_row = new QWidget;
+  auto* reach_layout = new QHBoxLayout(reach_row);
+  reach_layout->setContentsMargins(24, 2, 8, 2);
+  reach_layout->addWidget(new QLabel("Oversketch reach (px)"));
+  m_oversketch_reach_box = new QSpinBox;
+  m_oversketch_reach_box->setObjectName("oversketch-reach");
+  m_oversketch_reach_box->setRange(1, 50);
+  m_oversketch_reach_box->setValue(static_cast<int>(std::lround(m_oversketch_reach)));
+  reach_layout->addWidget(m_oversketch_reach_box);
+  connect(m_oversketch_reach_box, &QSpinBox::valueChanged, this, [this](int v) { setOversketchReach(v); });
+  auto* reach_action = new QWidgetAction(this);
+  reach_action->setDefaultWidget(reach_row);
+  edit->addAction(reach_action);
   edit->addSeparator();
   QMenu* tools = edit->addMenu("&Tool");
   tools->addActions(m_tools->actions());

@@ -19,6 +19,7 @@
 
 class QActionGroup;
 class QLabel;
+class QSpinBox;
 class QMenu;
 class QTimer;
 class QUndoStack;
@@ -51,6 +52,8 @@ class MainWindow : public QMainWindow {
   bool importPoints(const QString& path);
   /// Format from the extension: svg, dxf, json, csv. All curves, or only the selected stroke's.
   bool exportFile(const QString& path, bool selected_only = false);
+  /// What an SVG export adds to the curves (remembered in QSettings; off by default).
+  void setExportExtras(bool points, bool comb);
   bool exportPng(const QString& path);   // the canvas and the plots, side by side
   bool loadBackground(const QString& path);  // a raster image to trace over
   /// Offers the autosaved sketch if the last session did not end cleanly (no dialog
@@ -58,8 +61,16 @@ class MainWindow : public QMainWindow {
   bool offerRecovery();
   QString autosavePath() const;
 
-  /// Records a stroke (as the canvas does on pen-up), undoably.
+  /// Records a stroke, undoably (imports use it; a drawn stroke goes through strokeDrawn).
   void addStroke(const Stroke& stroke);
+  /// A stroke the canvas finished (pen-up): oversketches the stroke it starts or ends near
+  /// (app/gui/oversketch.h) as one undo step where oversketch is on, else adds it.
+  void strokeDrawn(const Stroke& stroke);
+  /// Edit > Oversketch (remembered in QSettings), and its reach in pixels.
+  bool oversketchEnabled() const;
+  void setOversketch(bool on);
+  double oversketchReach() const { return m_oversketch_reach; }
+  void setOversketchReach(double pixels);
   /// Removes the selected strokes (or, where none is, the selected segment's stroke) as
   /// one undo step; says so where nothing is selected.
   void deleteSelectedStrokes();
@@ -126,6 +137,10 @@ class MainWindow : public QMainWindow {
 
   Document m_document;
   Canvas* m_canvas = nullptr;
+  QAction* m_oversketch = nullptr;
+  bool m_export_points = false, m_export_comb = false;
+  QSpinBox* m_oversketch_reach_box = nullptr;
+  double m_oversketch_reach = 8.0;  // pixels (kDefaultOversketchReachPixels)
   CurvaturePlot* m_plot = nullptr;
   LcgPlot* m_lcg = nullptr;
   QMenu* m_recent = nullptr;

@@ -33,6 +33,7 @@ void translateStroke(DocumentStroke& stroke, const Vec2& d) {
   if (stroke.fit) stroke.fit = translated(*stroke.fit, d);
   for (auto& [joint, position] : stroke.joint_overrides) position += d;
   for (auto& [piece, apex] : stroke.apex_overrides) apex += d;
+  stroke.touch();
 }
 
 }  // namespace la::gui

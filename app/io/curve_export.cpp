@@ -119,19 +119,22 @@ std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std:
   Box box = boxOf(curves, points);
   if (box.empty()) box.add(Vec2::Zero());
   const double diag = std::max((box.hi - box.lo).norm(), 1e-300);
+  const double tolerance =
+      options.bezier_tolerance_absolute > 0 ? options.bezier_tolerance_absolute : options.bezier_tolerance * diag;
   const double margin = 0.05 * diag;
   const double width = options.stroke_width > 0 ? options.stroke_width : 0.002 * diag;
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" << num(box.lo.x() - margin) << ' '
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" viewBox=\"" << num(box.lo.x() - margin) << ' '
       << num(box.lo.y() - margin) << ' ' << num(box.hi.x() - box.lo.x() + 2 * margin) << ' '
       << num(box.hi.y() - box.lo.y() + 2 * margin) << "\" width=\"800\" height=\""
-      << num(800.0 * (box.hi.y() - box.lo.y() + 2 * margin) / (box.hi.x() - box.lo.x() + 2 * margin)) << "\">\n";
+      << num(800.0 * (box.hi.y() - box.lo.y() + 2 * margin) / (box.hi.x() - box.lo.x() + 2 * margin)) << "\">\n"
+      << "<desc>cubic Bezier paths within " << num(tolerance) << " of the fitted curves</desc>\n";
   // y-up data: mirror about the box's middle line so it shows the right way up
   svg << "<g" << (options.y_up ? " transform=\"matrix(1 0 0 -1 0 " + num(box.lo.y() + box.hi.y()) + ")\"" : std::string())
       << ">\n";
   if (options.show_points) {
-    svg << "<g id=\"input-points\" fill=\"#999\">\n";
+    svg << "<g id=\"points\" inkscape:label=\"points\" inkscape:groupmode=\"layer\" fill=\"#999\">\n";
     for (const auto& stroke : points)
       for (const Vec2& p : stroke)
         svg << "<circle cx=\"" << num(p.x()) << "\" cy=\"" << num(p.y()) << "\" r=\"" << num(1.5 * width) << "\"/>\n";
@@ -143,7 +146,7 @@ std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std:
     for (const ExportCurve& c : curves)
       for (const ExportPiece& piece : c.pieces) kmax = std::max(kmax, piece.curve->maxAbsKappa());
     const double scale = kmax > 0 ? options.comb_scale * diag / kmax : 0.0;
-    svg << "<g id=\"curvature-comb\" stroke=\"#d33\" stroke-width=\"" << num(0.5 * width) << "\" fill=\"none\">\n";
+    svg << "<g id=\"comb\" inkscape:label=\"comb\" inkscape:groupmode=\"layer\" stroke=\"#d33\" stroke-width=\"" << num(0.5 * width) << "\" fill=\"none\">\n";
     for (const ExportCurve& c : curves)
       for (const ExportPiece& piece : c.pieces) {
         CurveSamples smp;
@@ -160,11 +163,11 @@ std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std:
       }
     svg << "</g>\n";
   }
-  svg << "<g id=\"fitted-curves\" stroke=\"#1565c0\" stroke-width=\"" << num(width) << "\" fill=\"none\">\n";
+  svg << "<g id=\"curves\" inkscape:label=\"curves\" inkscape:groupmode=\"layer\" stroke=\"#1565c0\" stroke-width=\"" << num(width) << "\" fill=\"none\">\n";
   for (const ExportCurve& c : curves) {
     if (c.pieces.empty()) continue;
     std::ostringstream d;
-    const auto beziers = beziersOf(c, options.bezier_tolerance * diag);
+    const auto beziers = beziersOf(c, tolerance);
     d << "M" << num(beziers.front().p0.x()) << ' ' << num(beziers.front().p0.y());
     for (const CubicBezier& b : beziers)
       d << " C" << num(b.p1.x()) << ' ' << num(b.p1.y()) << ' ' << num(b.p2.x()) << ' ' << num(b.p2.y()) << ' '
@@ -177,13 +180,39 @@ std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std:
 }
 
 std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, double relative_tolerance) {
-  const double tol = relative_tolerance * exportDrawingDiagonal(curves, {});
+  DxfOptions options;
+  options.relative_tolerance = relative_tolerance;
+  return exportCurvesToDxf(curves, {}, options);
+}
+
+std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points,
+                              const DxfOptions& options) {
+  const double tol = options.absolute_tolerance > 0 ? options.absolute_tolerance
+                                                   : options.relative_tolerance * exportDrawingDiagonal(curves, {});
   std::ostringstream dxf;
   auto pair = [&](int code, const std::string& value) { dxf << code << '\n' << value << '\n'; };
   pair(0, "SECTION");
   pair(2, "HEADER");
   pair(9, "$ACADVER");
   pair(1, "AC1015");
+  pair(9, "$INSUNITS");
+  pair(70, std::to_string(static_cast<int>(options.units)));
+  pair(0, "ENDSEC");
+  if (!options.units_comment.empty()) pair(999, options.units_comment);
+  // The layers the entities name: curves and points apart, so a CAD user can hide either.
+  pair(0, "SECTION");
+  pair(2, "TABLES");
+  pair(0, "TABLE");
+  pair(2, "LAYER");
+  pair(70, "2");
+  for (const auto& [name, color] : {std::pair<const char*, const char*>{"CURVES", "5"}, {"POINTS", "8"}}) {
+    pair(0, "LAYER");
+    pair(2, name);
+    pair(70, "0");
+    pair(62, color);  // ACI colour: blue curves, grey points
+    pair(6, "CONTINUOUS");
+  }
+  pair(0, "ENDTAB");
   pair(0, "ENDSEC");
   pair(0, "SECTION");
   pair(2, "ENTITIES");
@@ -202,7 +231,7 @@ std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, double rel
     for (int i = 1; i < n; ++i) knots.insert(knots.end(), {double(i), double(i), double(i)});
     knots.insert(knots.end(), {double(n), double(n), double(n), double(n)});
     pair(0, "SPLINE");
-    pair(8, "0");
+    pair(8, "CURVES");
     pair(100, "AcDbEntity");
     pair(100, "AcDbSpline");
     pair(70, c.closed ? "9" : "8");  // 8 planar, +1 closed
@@ -217,6 +246,16 @@ std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, double rel
       pair(30, "0");
     }
   }
+  for (const auto& stroke : points)
+    for (const Vec2& p : stroke) {
+      pair(0, "POINT");
+      pair(8, "POINTS");
+      pair(100, "AcDbEntity");
+      pair(100, "AcDbPoint");
+      pair(10, num(p.x()));
+      pair(20, num(p.y()));
+      pair(30, "0");
+    }
   pair(0, "ENDSEC");
   pair(0, "EOF");
   return dxf.str();

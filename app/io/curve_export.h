@@ -41,6 +41,9 @@ struct CurveSampling {
 
 struct SvgOptions {
   double bezier_tolerance = 1e-4;  // relative to the drawing's bounding-box diagonal
+  /// An absolute tolerance instead (drawing units; used where > 0): the GUI asks for a
+  /// tenth of the fit tolerance. The file states the tolerance it was written with.
+  double bezier_tolerance_absolute = 0.0;
   bool show_points = true;         // the input points, as small dots
   bool show_comb = false;          // curvature comb (normals scaled by kappa)
   double comb_scale = 0.1;         // longest comb tooth, relative to the diagonal
@@ -55,8 +58,20 @@ double drawingDiagonal(const std::vector<Curve>& curves, const std::vector<std::
 std::string curvesToSvg(const std::vector<Curve>& curves, const std::vector<std::vector<Vec2>>& points,
                         const SvgOptions& options = {});
 
-/// DXF (AutoCAD R2000 ASCII) with one degree-3 SPLINE per curve, its control points
-/// those of the Bezier approximation within tolerance (relative to the diagonal).
+/// DXF $INSUNITS codes (AutoCAD's drawing-units table) for the units the GUI offers.
+enum class DxfUnits { kUnitless = 0, kInches = 1, kMillimeters = 4 };
+
+struct DxfOptions {
+  double relative_tolerance = 1e-4;  // of the Bezier approximation, relative to the diagonal
+  double absolute_tolerance = 0.0;   // drawing units; used instead where > 0
+  DxfUnits units = DxfUnits::kUnitless;
+  std::string units_comment;         // a 999 comment after the header (e.g. why px is unitless)
+};
+
+/// DXF (AutoCAD R2000 ASCII) with one degree-3 SPLINE per curve on layer CURVES, its
+/// control points those of the Bezier approximation within tolerance, the points as
+/// POINT entities on layer POINTS (both layers declared in the LAYER table), and the
+/// units in the header ($INSUNITS).
 std::string curvesToDxf(const std::vector<Curve>& curves, double relative_tolerance = 1e-4);
 
 /// CSV with header `x,y,s,theta,kappa`, a blank line between curves (so the file is
@@ -87,6 +102,8 @@ double exportDrawingDiagonal(const std::vector<ExportCurve>& curves, const std::
 std::string exportCurvesToSvg(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points,
                               const SvgOptions& options = {});
 std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, double relative_tolerance = 1e-4);
+std::string exportCurvesToDxf(const std::vector<ExportCurve>& curves, const std::vector<std::vector<Vec2>>& points,
+                              const DxfOptions& options);
 std::string exportCurvesToCsv(const std::vector<ExportCurve>& curves, const CurveSampling& sampling = {});
 
 }  // namespace la

@@ -12,6 +12,7 @@
 #include "app/gui/document.h"
 #include "app/gui/markers.h"
 #include "app/gui/selection.h"
+#include "app/gui/stroke_drawing.h"
 #include "app/gui/translate.h"
 
 namespace la::gui {
@@ -190,6 +191,60 @@ TEST(StrokePicking, NearestWithinReachAndWhollyInsideTheBand) {
   EXPECT_EQ(doc.strokes()[0].id, id1);
   selection.toggle(doc.strokes()[0]);
   EXPECT_TRUE(selection.indices(doc).empty());
+}
+
+// Level of detail: 200,000 samples along 1000 pixels, with 0.3 px of jitter, are drawn as
+// at most ~2 per pixel of length per pixel of width (one per 0.5 px cell); the ends stay.
+TEST(StrokeDrawing, RawPointsAreThinnedToAboutTwoPerPixel) {
+  std::vector<StrokeSample> pts(200000);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double x = 1000.0 * static_cast<double>(i) / (pts.size() - 1);
+    pts[i].p = Vec2(x, 300.0 + 0.3 * std::sin(0.7 * static_cast<double>(i)));  // jitter by formula
+  }
+  const QPolygonF drawn = decimatedPoints(pts, QTransform());
+  const double cells_per_pixel = 1.0 / kRawPointStepPixels;
+  const double bound = 1000.0 * cells_per_pixel * (0.6 * 2 + 1) * cells_per_pixel;  // length x (band width + 1 cell)
+  EXPECT_LE(drawn.size(), bound) << "kept " << drawn.size() << " of 200000";
+  EXPECT_GE(drawn.size(), 1000.0 * cells_per_pixel) << "every half pixel along the stroke has its dot";
+  EXPECT_EQ(drawn.front(), QPointF(0, 300));
+  EXPECT_EQ(drawn.back(), QPointF(pts.back().p.x(), pts.back().p.y()));
+  // zoomed out 10x, the same stroke is 100 px long: ~10x fewer dots
+  QTransform zoom;
+  zoom.scale(0.1, 0.1);
+  EXPECT_LE(decimatedPoints(pts, zoom).size(), 100.0 * cells_per_pixel * 3 + 2);
+}
+
+// The cache is keyed by the stroke's revision: a move (a new revision) is drawn where the
+// stroke went, and the drawing of the old revision is forgotten.
+TEST(StrokeDrawing, AMovedStrokeIsDrawnAnew) {
+  Document doc;
+  Stroke s;
+  for (int i = 0; i < 80; ++i) {
+    StrokeSample q;
+    q.p = Vec2(5.0 * i, 40.0 * std::sin(i / 12.0));
+    s.samples.push_back(q);
+  }
+  doc.addStroke(s);
+  StrokeDrawings drawings;
+  const std::uint64_t first = doc.strokes()[0].revision;
+  const StrokeDrawing& d = drawings.of(doc.strokes()[0], 1.0, 24);
+  ASSERT_FALSE(d.segments.empty());
+  const QPointF start = d.segments.front().front();
+  EXPECT_NEAR(start.x(), doc.strokes()[0].fit->curve.pieces.front().segment.start().x(), 1e-9);
+  // the comb from the unit comb equals the comb computed at that gain
+  const Comb direct = curvatureComb(doc.strokes()[0].fit->curve, 7.0, 24), scaled = d.comb(7.0);
+  ASSERT_EQ(direct.tip.size(), scaled.tip.size());
+  for (std::size_t i = 0; i < direct.tip.size(); ++i) EXPECT_LT((direct.tip[i] - scaled.tip[i]).norm(), 1e-9);
+  ASSERT_EQ(direct.envelope.size(), scaled.envelope.size());
+  for (std::size_t i = 0; i < direct.envelope.size(); ++i) EXPECT_LT((direct.envelope[i] - scaled.envelope[i]).norm(), 1e-9);
+
+  doc.translateStrokes({0}, Vec2(100, 50));
+  EXPECT_NE(doc.strokes()[0].revision, first);
+  drawings.prune(doc);
+  EXPECT_EQ(drawings.size(), 0u) << "the old revision's drawing is forgotten";
+  const StrokeDrawing& moved = drawings.of(doc.strokes()[0], 1.0, 24);
+  EXPECT_NEAR(moved.segments.front().front().x(), start.x() + 100, 1e-9);
+  EXPECT_NEAR(moved.segments.front().front().y(), start.y() + 50, 1e-9);
 }
 
 }  // namespace

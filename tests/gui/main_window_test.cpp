@@ -589,6 +589,32 @@ TEST_F(MainWindowTest, BackgroundImageAndRecoveryMarker) {
   EXPECT_TRUE(next.offerRecovery());
 }
 
+// A stroke too long to fit within a frame (Document::kOffThreadFitSamples) is recorded at
+// once, unfitted, and fitted entirely off the UI thread; undo and redo work meanwhile.
+TEST_F(MainWindowTest, AHugeStrokeIsFittedOffTheUiThread) {
+  Stroke huge;
+  const std::size_t n = Document::kOffThreadFitSamples + 4000;
+  for (std::size_t i = 0; i < n; ++i) {
+    StrokeSample q;
+    const double x = 600.0 * static_cast<double>(i) / (n - 1);
+    q.p = Vec2(60 + x, 300 + 80 * std::sin(x / 100.0));
+    huge.samples.push_back(q);
+  }
+  window->addStroke(huge);
+  ASSERT_EQ(window->document().strokes().size(), 1u);
+  const DocumentStroke& s = window->document().strokes().front();
+  EXPECT_FALSE(s.fit.has_value()) << "no fit was made on the UI thread";
+  EXPECT_TRUE(s.provisional);
+  window->canvas()->grab();  // its points are drawn meanwhile
+  const FitResult& fit = lastFit();
+  EXPECT_LT(fit.quality.g2_gap, 1e-6);
+  EXPECT_FALSE(window->document().strokes().front().provisional);
+  window->undoStack()->undo();
+  EXPECT_TRUE(window->document().strokes().empty());
+  window->undoStack()->redo();
+  EXPECT_TRUE(lastFit().quality.max_dev < 0.05 * lastFit().quality.diagonal);
+}
+
 TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
   window->importPoints(QString(LAFAIR_SHARED_DATA_DIR) + "/strokes/dollar1_unistroke_s01_pilot/csv/medium/question_mark.csv");
   window->finishBackgroundFits();  // the picture shows the fit as it ends up

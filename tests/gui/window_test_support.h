@@ -69,6 +69,9 @@ class MainWindowTest : public ::testing::Test {
     window = std::make_unique<MainWindow>();
     window->resize(1100, 760);
     window->show();
+    // Most tests draw strokes over each other on purpose (wave() then wave(70), its first
+    // part): those are new strokes there, not oversketches. The oversketch tests turn it on.
+    window->setOversketch(false);
     ASSERT_TRUE(dir.isValid());
   }
   // The last stroke's fit as it ends up (stage 7 done: it runs off the UI thread).
