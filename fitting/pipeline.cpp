@@ -90,6 +90,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
   std::vector<Part> parts = splitAtCorners(r.cleaned);
   r.curve.closed = r.cleaned.closed;
   const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
+  // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
+  // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
+  std::size_t polish_room = options.max_polish_segments;
   auto fitOne = [&](const Part& part) {
     if (polishing) {
       const auto tp = Clock::now();
@@ -98,6 +101,15 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
       if (one) return *one;
     }
     PartFit fit = fitPart(part, context, polishing);
+    if (polishing && fit.segments.size() > polish_room) {
+      if (!r.over_polish_limit)
+        r.warnings.push_back("stage 7 left parts with the chain of stages 1-6: the stroke's chains have more than " +
+                             std::to_string(options.max_polish_segments) +
+                             " segments in all (FitOptions::max_polish_segments; lafit --max-polish-segments)");
+      r.over_polish_limit = true;
+      return fit;
+    }
+    if (polishing) polish_room -= fit.segments.size();
     if (!polishing) {
       // (the paper's chain over the cap on extrema: the cap's merges, by stage 7's fit)
       if (options.g2 != G2Method::kOff && overCap(fit.segments, part.closed, context)) polishPart(fit, part, context, false);
@@ -185,7 +197,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
     r.cleaned.corners.erase(r.cleaned.corners.begin() + static_cast<std::ptrdiff_t>(closed ? k + 1 : k));
   }
   joinAtCorners(fits, parts, context.g2());
-  if (polishing && !context.outOfTime()) {
+  std::size_t segments = 0;
+  for (const PartFit& fit : fits) segments += fit.segments.size();
+  if (polishing && !context.outOfTime() && !r.over_polish_limit && segments <= options.max_polish_segments) {
     const auto tp = Clock::now();
     if (fitAcrossCorners(fits, parts, closed, context))
       joinAtCorners(fits, parts, context.g2());  // (a closed chain's seam, to rounding)
@@ -238,6 +252,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
 
 FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const auto start = Clock::now();
+  if (stroke.samples.size() > options.max_points)
+    throw StrokeError("the stroke has " + std::to_string(stroke.samples.size()) + " samples, more than " +
+                      std::to_string(options.max_points) + " (FitOptions::max_points; lafit --max-points raises it)");
   FitResult r = fitOnce(stroke, options, true, start);
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
   // and the corners stage 7 adds do not always find: where the bound on the radius
@@ -251,7 +268,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   };
   // (only where some joint is on the bound: elsewhere the fit without it is the same)
   const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
-  if (polishing && bounded && !r.cleaned.straight && misses(r)) {
+  const bool out_of_time = options.time_budget_ms > 0.0 && msSince(start) > options.time_budget_ms;
+  if (polishing && bounded && !r.cleaned.straight && !out_of_time && !r.over_polish_limit && misses(r)) {
     FitResult free = fitOnce(stroke, options, false, start);
     if (!misses(free)) {
       free.timings.total_ms = msSince(start);

@@ -90,6 +90,14 @@ struct FitOptions {
   /// extrema are kept even then. The app's background fit uses it, so that a hard stroke
   /// arrives in bounded time.
   double time_budget_ms = 0.0;
+  /// Bounded work. A stroke of more raw samples is refused (StrokeError) before any work:
+  /// the clean-up and stages 1-6 grow as n log n with the samples. Stage 7 fits a part's
+  /// whole chain at once, at a cost growing with the cube of its segments: it runs on the
+  /// parts in turn while their stage-6 chains add up to at most max_polish_segments; the
+  /// others keep the stage-6 chain, with a warning (a scribble of a thousand turns). The
+  /// shared data's strokes have at most 27. lafit --max-points, --max-polish-segments.
+  std::size_t max_points = 1'000'000;
+  std::size_t max_polish_segments = 40;
 };
 
 /// One piece of the segmentation and how its LA segment was made.
@@ -132,6 +140,7 @@ struct FitResult {
   SolveReport smoothing;              // worst part's smoothing report
   SolveReport g2;                     // worst part's G2 report
   bool out_of_time = false;  // the time budget ran out: stage 7 stopped early
+  bool over_polish_limit = false;  // parts kept their stage-6 chain (FitOptions::max_polish_segments)
   /// The largest distance from every finite raw sample to the curve, those the clean-up
   /// left out included (cleaned.left_out; quality.max_dev is over the kept points).
   double max_dev_all_points = 0.0;

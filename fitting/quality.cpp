@@ -2,13 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "fitting/g2_joints.h"
 
 namespace la {
 namespace {
 
-// Cell size of the edge grid, in mean polyline edge lengths: a cell holds about this
+// Cell size of the edge grid, in median polyline edge lengths: a cell holds about this
 // many edges of a curve passing through it once, and a point within the tolerance of
 // the curve finds its foot in the first ring or two of cells.
 constexpr double kEdgesPerCell = 4.0;
@@ -26,7 +28,12 @@ constexpr int kMaxCellsPerAxis = 512;
 // intersection, on both sides of a thin trailing edge.)
 class EdgeGrid {
  public:
-  explicit EdgeGrid(const std::vector<Vec2>& poly) : poly_(poly) {
+  /// The grid covers the polyline's bounding box, or only `region` (lo, hi) where the
+  /// queries are known to lie there: a curve that runs far from the points (a fit gone
+  /// astray) must not coarsen the cells where the points are. Edges wholly outside the
+  /// region are kept aside and searched only by a query the grid cannot answer.
+  explicit EdgeGrid(const std::vector<Vec2>& poly, std::optional<std::pair<Vec2, Vec2>> region = std::nullopt)
+      : poly_(poly) {
     const int edges = static_cast<int>(poly.size()) - 1;
     direction_.resize(edges);
     inverse_length2_.resize(edges);
@@ -36,15 +43,35 @@ class EdgeGrid {
       inverse_length2_[e] = l2 > 0.0 ? 1.0 / l2 : 0.0;
     }
     lo_ = hi_ = poly.front();
-    double length = 0.0;
-    for (const Vec2& d : direction_) length += d.norm();
     for (const Vec2& q : poly) lo_ = lo_.cwiseMin(q), hi_ = hi_.cwiseMax(q);
+    auto outside = [&](int e) {
+      const Vec2 a = poly[e].cwiseMin(poly[e + 1]), b = poly[e].cwiseMax(poly[e + 1]);
+      return (b.array() < lo_.array()).any() || (a.array() > hi_.array()).any();
+    };
+    if (region) {
+      lo_ = lo_.cwiseMax(region->first), hi_ = hi_.cwiseMin(region->second);
+      if ((lo_.array() > hi_.array()).any()) lo_ = hi_ = region->first;  // no edge there
+    }
+    // (the median edge, not the mean: a curve run away has a few edges as long as the
+    // box, which would make one cell of it)
+    std::vector<double> lengths;
+    for (int e = 0; e < edges; ++e) {
+      if (region && outside(e)) {
+        far_.push_back(e);
+        continue;
+      }
+      lengths.push_back(direction_[e].norm());
+    }
+    const auto middle = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+    if (!lengths.empty()) std::nth_element(lengths.begin(), middle, lengths.end());
+    const double typical = lengths.empty() ? 0.0 : *middle;
     const Vec2 extent = hi_ - lo_;
-    cell_ = std::max({kEdgesPerCell * length / std::max(edges, 1), extent.maxCoeff() / kMaxCellsPerAxis, 1e-300});
+    cell_ = std::max({kEdgesPerCell * typical, extent.maxCoeff() / kMaxCellsPerAxis, 1e-300});
     nx_ = std::clamp(static_cast<int>(extent.x() / cell_) + 1, 1, kMaxCellsPerAxis + 1);
     ny_ = std::clamp(static_cast<int>(extent.y() / cell_) + 1, 1, kMaxCellsPerAxis + 1);
     start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
     auto cover = [&](int e, auto&& visit) {  // the cells the edge's bounding box touches
+      if (region && outside(e)) return;
       const Vec2 a = poly[e].cwiseMin(poly[e + 1]), b = poly[e].cwiseMax(poly[e + 1]);
       const int x0 = cellX(a.x()), x1 = cellX(b.x()), y0 = cellY(a.y()), y1 = cellY(b.y());
       for (int y = y0; y <= y1; ++y)
@@ -97,8 +124,16 @@ class EdgeGrid {
       }
       // Everything not searched lies outside the square of rings 0..r around p's cell.
       const double margin = cell_ * std::min({fx - (px - r), px + r + 1 - fx, fy - (py - r), py + r + 1 - fy});
-      if (best2 <= margin * margin || r > outside + nx_ + ny_) return std::sqrt(best2);
+      if (best2 <= margin * margin || r > outside + nx_ + ny_) break;
     }
+    // The edges outside the grid's box are no nearer than its border.
+    const double border = std::max(0.0, -(lo_ - p).cwiseMax(p - hi_).maxCoeff());
+    if (!far_.empty() && best2 > border * border)
+      for (int e : far_) {
+        const double d2 = distance2(p, e);
+        if (d2 < best2) best2 = d2, edge = e;
+      }
+    return std::sqrt(best2);
   }
 
  private:
@@ -110,6 +145,7 @@ class EdgeGrid {
   double cell_ = 1.0;
   int nx_ = 1, ny_ = 1;
   std::vector<int> start_, edges_;
+  std::vector<int> far_;  // edges wholly outside the region
   std::vector<Vec2> direction_;
   std::vector<double> inverse_length2_;
 };
@@ -130,11 +166,16 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     poly.insert(poly.end(), smp.point.begin(), smp.point.end());
   }
   std::vector<double> out(points.size(), INFINITY);
+  if (points.empty()) return out;
   if (poly.size() < 2) {
     for (std::size_t i = 0; i < points.size(); ++i) out[i] = poly.empty() ? INFINITY : (points[i] - poly[0]).norm();
     return out;
   }
-  const EdgeGrid grid(poly);
+  // (the grid where the points are, a margin of a tenth of the diagonal round them)
+  Vec2 lo = points.front(), hi = points.front();
+  for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const Vec2 margin = Vec2::Constant(0.1 * diagonal);
+  const EdgeGrid grid(poly, std::pair(lo - margin, hi + margin));
   // Points come in order along the stroke: the edges next to the previous point's nearest
   // give a first bound, which the grid search then confirms or beats.
   const int edges = static_cast<int>(poly.size()) - 1;
@@ -159,14 +200,38 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   if (points.size() < 2 || curve.pieces.empty()) return 0.0;
   if (curve.closed) points.push_back(points.front());
   const EdgeGrid grid(points);
-  double worst = 0.0;
-  int edge = 0;  // the previous sample's nearest: a first bound for the next
+  std::vector<Vec2> samples;
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
     const int n = std::clamp(static_cast<int>(std::ceil(piece.segment.length() / (kStrayStep * diagonal))) + 1, 2, 100000);
     smp.clear();
     piece.segment.sample(n, smp);
-    for (const Vec2& q : smp.point) worst = std::max(worst, grid.distance(q, grid.distance2(q, edge), edge));
+    samples.insert(samples.end(), smp.point.begin(), smp.point.end());
+  }
+  // The edges next to the previous sample's nearest (as many as the points have per
+  // sample step) give a first bound, as in distancesToCurve.
+  const int edges = static_cast<int>(points.size()) - 1;
+  const int neighbours = kNeighbourEdges + 2 * edges / static_cast<int>(samples.size());
+  // A sample more than a diagonal outside the points' box counts by its distance to the
+  // box (a lower bound, and a curve run away): an exact search from there visits every
+  // cell of the grid.
+  Vec2 lo = points.front(), hi = points.front();
+  for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  double worst = 0.0;
+  int edge = 0;
+  for (const Vec2& q : samples) {
+    const double outside = (lo - q).cwiseMax(q - hi).cwiseMax(Vec2::Zero()).norm();
+    if (outside > diagonal) {
+      worst = std::max(worst, outside);
+      continue;
+    }
+    double bound2 = INFINITY;
+    const int from = std::max(0, edge - neighbours), to = std::min(edges - 1, edge + neighbours);
+    for (int e = from; e <= to; ++e) {
+      const double d2 = grid.distance2(q, e);
+      if (d2 < bound2) bound2 = d2, edge = e;
+    }
+    worst = std::max(worst, grid.distance(q, bound2, edge));
   }
   return worst;
 }

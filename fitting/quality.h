@@ -46,6 +46,8 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
 
 /// Largest distance from the curve (sampled every 0.2% of `diagonal`) to the polyline
 /// of `points` (closed if the curve is): where the curve goes that the stroke never went.
+/// Beyond a diagonal from the points' bounding box it is the distance to that box (a
+/// lower bound: such a curve has run away, and how far matters no more).
 double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal);
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);

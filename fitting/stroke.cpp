@@ -246,6 +246,12 @@ class Polyline {
     } else {
       m_cumulative = m_s;
     }
+    // Running sums of the points (about point 0, to keep them small) at the same
+    // unwrapped indices, so a leg's bulge is O(1) however many points a window holds.
+    const std::ptrdiff_t lo = closed ? -m_n : 0, hi = closed ? 2 * m_n : m_n;
+    m_sums.reserve(static_cast<std::size_t>(hi - lo + 1));
+    m_sums.push_back(Vec2::Zero());
+    for (std::ptrdiff_t k = lo; k < hi; ++k) m_sums.push_back(m_sums.back() + (at(k) - p.front()));
   }
 
   double length() const { return m_length; }
@@ -259,6 +265,12 @@ class Polyline {
   double distance(std::ptrdiff_t i, std::ptrdiff_t j) const {
     const double d = std::abs(m_s[static_cast<std::size_t>(wrap(i))] - m_s[static_cast<std::size_t>(wrap(j))]);
     return m_closed ? std::min(d, m_length - d) : d;
+  }
+
+  /// The sum of the points at unwrapped indices from..to-1 (from <= to).
+  Vec2 sum(std::ptrdiff_t from, std::ptrdiff_t to) const {
+    return m_sums[static_cast<std::size_t>(to + m_shift)] - m_sums[static_cast<std::size_t>(from + m_shift)] +
+           static_cast<double>(to - from) * m_p.front();
   }
 
   /// Walks from i in direction dir (+1 / -1) until at least `length` of arc and
@@ -324,6 +336,7 @@ class Polyline {
   std::ptrdiff_t m_n = 0;
   std::vector<double> m_s;          // arc length at each point from point 0
   std::vector<double> m_cumulative; // the same at unwrapped indices (closed: -n .. 2n-1)
+  std::vector<Vec2> m_sums;         // m_sums[k + shift] = sum of (points - point 0) before unwrapped index k
   std::ptrdiff_t m_shift = 0;
   double m_length = 0.0;
 };
@@ -335,8 +348,8 @@ bool straightLegs(const Polyline& line, std::ptrdiff_t i, const Polyline::Turn& 
   auto straight = [&](std::ptrdiff_t from, std::ptrdiff_t to) {
     const Vec2 chord = line.at(to) - line.at(from);
     const double length = chord.norm();
-    double bulge = 0.0;
-    for (std::ptrdiff_t j = from + 1; j < to; ++j) bulge += cross(chord, line.at(j) - line.at(from)) / length;
+    const double bulge =
+        cross(chord, line.sum(from + 1, to) - static_cast<double>(to - from - 1) * line.at(from)) / length;
     return to - from - 1 >= kMinLegPoints && std::abs(bulge) / static_cast<double>(to - from - 1) <= kLegStraightness * length;
   };
   return straight(turn.a, i) && straight(i, turn.b);
@@ -377,7 +390,12 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
             [](const Candidate& x, const Candidate& y) { return x.turn.angle > y.turn.angle; });
 
   std::vector<std::ptrdiff_t> accepted;
+  // A candidate within one window of an accepted corner is that corner seen off-centre.
+  auto nearAccepted = [&](std::ptrdiff_t i) {
+    return std::any_of(accepted.begin(), accepted.end(), [&](std::ptrdiff_t v) { return line.distance(v, i) < w; });
+  };
   for (const Candidate& c : candidates) {
+    if (nearAccepted(c.i)) continue;  // before the vertex search: on a long zigzag most are
     // The vertex: the point of the window farthest from the chord P_a P_b (the segment,
     // not its line: at a hairpin the chord is short and across the legs, and points far
     // along a leg are further from its line than the tip is).
@@ -391,11 +409,7 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
       }
     }
     if (!closed && (vertex < kMinSideSamples || vertex > n - 1 - kMinSideSamples)) vertex = c.i;
-    // A candidate within one window of an accepted corner is that corner seen off-centre.
-    const bool suppressed = std::any_of(accepted.begin(), accepted.end(), [&](std::ptrdiff_t v) {
-      return std::min(line.distance(v, vertex), line.distance(v, c.i)) < w;
-    });
-    if (!suppressed) accepted.push_back(vertex);
+    if (!nearAccepted(vertex)) accepted.push_back(vertex);
   }
   if (ends_only)
     std::erase_if(accepted, [&](std::ptrdiff_t v) { return std::min(line.distance(v, 0), line.distance(v, n - 1)) >= w; });

@@ -478,6 +478,32 @@ TEST_F(LafitCli, FitAppliesToleranceAndMaxExtrema) {
 
 // ------------------------------------------------------------------ fit: methods and flags
 
+// The limits' flags: over one, lafit refuses the file with the limit and its flag
+// named (exit 1, nothing written); raised, it reads. --jobs does not change the curves.
+TEST_F(LafitCli, LimitsAreNamedWithTheirFlagsAndJobsDoNotChangeTheCurves) {
+  std::string d = "M 0 0";
+  for (int i = 0; i < 200; ++i) d += i % 2 ? " C 0 50 100 -50 0 0" : " C 100 50 0 -50 100 0";
+  write("zig.svg", "<svg>\n<path d='" + d + "'/>\n</svg>\n");
+  Outcome refused = lafit({"fit", "zig.svg", "-o", "zig.json", "--max-svg-points", "20000"});
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find("zig.svg:2: <path> flattens to more than 20000 points"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--max-svg-points"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(m_work / "zig.json"));
+  EXPECT_EQ(lafit({"fit", "zig.svg", "-o", "zig.json", "--max-svg-points", "0"}).status, 2);  // usage
+
+  write("three.csv", csvOf(ellipseArc(40, 20, 0.2, 2.5, 60)) + "\n" + csvOf(ellipseArc(30, 50, -1.0, 1.5, 80, 5, 5)) +
+                         "\n" + csvOf(ellipseArc(60, 25, 1.0, 4.0, 70, -3, 2)));
+  EXPECT_EQ(lafit({"fit", "three.csv", "--max-points", "70"}).status, 1);
+  ASSERT_EQ(lafit({"fit", "three.csv", "-o", "one.json", "--jobs", "1"}).status, 0);
+  ASSERT_EQ(lafit({"fit", "three.csv", "-o", "two.json", "--jobs", "3"}).status, 0);
+  auto withoutTimings = [&](const std::string& name) {
+    json curves = curvesOf(json::parse(slurp(m_work / name)));
+    for (json& c : curves) c.erase("timings_ms");
+    return curves;
+  };
+  EXPECT_EQ(withoutTimings("one.json"), withoutTimings("two.json"));
+}
+
 TEST_F(LafitCli, FitWithG2BisectionIsG2) {
   copyData(kBrace, "brace.csv");
   const Outcome r = lafit({"fit", "brace.csv", "--g2", "bisection", "-o", "curve.json"});

@@ -933,6 +933,36 @@ INSTANTIATE_TEST_SUITE_P(Chains, PipelineAlphaTest,
                          caseParamName);
 
 // The truth generator itself: what the cases claim about themselves.
+// Bounded work (FitOptions::max_points, max_polish_segments): over the sample limit the
+// stroke is refused before any work, naming the limit; a stroke whose stages 1-6 chain
+// has more segments than stage 7 may fit keeps that chain, G2, with a warning naming
+// the limit; under the limit stage 7 runs as before.
+TEST(PipelineLimits, TooManySamplesAreRefusedAndTooManySegmentsKeepStageSix) {
+  std::vector<Vec2> wave;
+  for (int i = 0; i <= 600; ++i) wave.emplace_back(0.5 * i, 20.0 * std::sin(i * 0.08));  // 7.6 periods
+  FitOptions options;
+  options.max_points = 600;
+  try {
+    fitStroke(strokeOf(wave), options);
+    ADD_FAILURE() << "601 samples over a limit of 600 were fitted";
+  } catch (const StrokeError& e) {
+    EXPECT_NE(std::string(e.what()).find("601 samples, more than 600"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--max-points"), std::string::npos) << e.what();
+  }
+  options = {};
+  const FitResult full = fitStroke(strokeOf(wave), options);
+  EXPECT_FALSE(full.over_polish_limit);
+  options.max_polish_segments = 4;  // (7.6 periods: some 15 extrema, a segment or more each)
+  const FitResult kept = fitStroke(strokeOf(wave), options);
+  EXPECT_TRUE(kept.over_polish_limit);
+  EXPECT_GT(kept.curve.pieces.size(), 4u);
+  expectGaps(kept);
+  const bool warned = std::any_of(kept.warnings.begin(), kept.warnings.end(), [](const std::string& w) {
+    return w.find("--max-polish-segments") != std::string::npos;
+  });
+  EXPECT_TRUE(warned);
+}
+
 TEST(PipelineTruthGenerator, ChainsAreG2WithVisibleJoints) {
   for (int index = 0; index < kCaseCount; ++index) {
     const Truth& t = truthCase(index);

@@ -49,8 +49,9 @@ std::string errorOf(const std::function<void()>& parse) {
   return "(no PointFileError thrown)";
 }
 
-void expectError(const std::string& text, const std::string& name, std::initializer_list<std::string> parts) {
-  const std::string message = errorOf([&] { parseStrokes(text, name); });
+void expectError(const std::string& text, const std::string& name, std::initializer_list<std::string> parts,
+                 const ReadLimits& limits = {}) {
+  const std::string message = errorOf([&] { parseStrokes(text, name, limits); });
   for (const std::string& part : parts)
     EXPECT_NE(message.find(part), std::string::npos) << "message: " << message << "\nexpected to contain: " << part
                                                      << "\ninput:\n" << text;
@@ -676,6 +677,62 @@ TEST(PointFileRealData, DejaVuOHasTwoClosedContours) {
     for (const Vec2& q : ours) worst = std::max(worst, distanceToPolyline(q, theirs));
     EXPECT_LE(worst, 0.5) << "contour " << i << " off the CSV samples (font units)";
   }
+}
+
+// ReadLimits: each limit is checked as the file is read, and the message names the
+// line (or key), the limit and the lafit flag that raises it; one under the limit reads.
+TEST(ReadLimits, PointsPerStrokeAndStrokesPerFile) {
+  ReadLimits limits;
+  limits.max_points_per_stroke = 3;
+  EXPECT_EQ(parseStrokes("1,2\n3,4\n5,7\n", "ok.csv", limits).size(), 1u);
+  expectError("1,2\n3,4\n5,7\n8,9\n", "a.csv", {"a.csv:4:", "stroke 1 has more than 3 points", "--max-points"},
+              limits);
+  expectError(R"({"strokes": [{"points": [[0,0],[1,1],[2,0],[3,1]]}]})", "a.json",
+              {"a.json: strokes[0].points: 4 points, more than 3", "--max-points"}, limits);
+  limits = {};
+  limits.max_strokes = 2;
+  EXPECT_EQ(parseStrokes("1,2\n3,4\n\n5,6\n7,9\n", "ok.csv", limits).size(), 2u);
+  expectError("1,2\n3,4\n\n5,6\n7,9\n\n1,1\n2,5\n", "b.csv", {"b.csv:8:", "more than 2 strokes", "--max-strokes"},
+              limits);
+  expectError(R"({"strokes": [{"points": [[0,0]]}, {"points": [[0,0]]}, {"points": [[0,0]]}]})", "b.json",
+              {"b.json: 3 strokes, more than 2", "--max-strokes"}, limits);
+  const std::string three_paths = "<svg>\n<path d='M0 0 L1 1'/>\n<path d='M0 0 L1 2'/>\n<path d='M0 0 L2 1'/>\n</svg>";
+  expectError(three_paths, "b.svg", {"b.svg:4:", "more than 2 strokes", "--max-strokes"}, limits);
+}
+
+TEST(ReadLimits, NestingOfJsonAndSvg) {
+  ReadLimits limits;
+  limits.max_nesting = 5;  // a stroke file's own depth: {"strokes": [{"points": [[x, y]]}]}
+  EXPECT_EQ(parseStrokes(R"({"strokes": [{"points": [[0,0],[1,1],[2,0]]}]})", "ok.json", limits).size(), 1u);
+  // (brackets inside strings do not count)
+  EXPECT_EQ(parseStrokes(R"({"note": "[[[[[[", "strokes": [{"points": [[0,0],[1,1],[2,0]]}]})", "ok.json", limits).size(),
+            1u);
+  expectError("{\"strokes\": [{\"points\": [[[0]]]}]}", "deep.json", {"deep.json:1:27:", "nested deeper than 5", "--max-nesting"},
+              limits);
+  // a million open brackets are refused before nlohmann parses (or recurses into) them
+  expectError(std::string(1'000'000, '['), "huge.json", {"huge.json:1:6:", "nested deeper than 5"}, limits);
+  expectError(std::string(1'000'000, '['), "huge.json", {"huge.json:1:257:", "nested deeper than 256"});
+  const std::string groups = "<svg>\n<g>\n<g>\n<g>\n<g><path d='M0 0 L1 1 L2 0'/></g></g></g></g></svg>";
+  limits.max_nesting = 4;
+  expectError(groups, "deep.svg", {"deep.svg:5:", "elements nested deeper than 4", "--max-nesting"}, limits);
+  limits.max_nesting = 5;
+  EXPECT_EQ(parseStrokes(groups, "ok.svg", limits).size(), 1u);
+}
+
+// A 4 KB path of 200 back-and-forth curves flattens to about 50,000 points: over a
+// limit of 20,000 it is refused as the points are counted, before they are made.
+TEST(ReadLimits, SvgFlatteningIsRefusedBeforeTheWork) {
+  std::string d = "M 0 0";
+  for (int i = 0; i < 200; ++i) d += i % 2 ? " C 0 50 100 -50 0 0" : " C 100 50 0 -50 100 0";
+  ReadLimits limits;
+  limits.max_svg_points = 20'000;
+  const std::string text = "<svg>\n<path d='" + d + "'/>\n</svg>";
+  expectError(text, "zig.svg", {"zig.svg:2:", "<path> flattens to more than 20000 points", "--max-svg-points"}, limits);
+  limits.max_svg_points = 200'000;
+  const std::vector<Stroke> strokes = parseStrokes(text, "zig.svg", limits);
+  ASSERT_EQ(strokes.size(), 1u);
+  EXPECT_GT(strokes[0].samples.size(), 20'000u);
+  EXPECT_LE(strokes[0].samples.size(), 200'000u);
 }
 
 }  // namespace

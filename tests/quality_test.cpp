@@ -131,6 +131,26 @@ TEST(DistancesToCurve, PointsFarOutsideAndNearAClothoid) {
   expectAgrees(c, pts, 3.0);
 }
 
+// A fit gone astray: the curve runs 10,000 diagonals away and back (its long edges must
+// not make one coarse cell of the points' region), over points near its first segment.
+TEST(DistancesToCurve, ACurveRunAwayFarFromThePoints) {
+  Curve c;
+  const LaSegment near(-1.0, 3.0, Vec2(0, 0), 0.3, 0.1, 2.0);
+  c.pieces.push_back({near});
+  const LaSegment out = LaSegment::arc(3.0e4, near.end(), near.theta(near.length()), 0.0);
+  c.pieces.push_back({out, true});
+  c.pieces.push_back({LaSegment::arc(3.0e4, out.end(), out.theta0() + 3.0, 0.0), true});
+  Curve first;
+  first.pieces.push_back({near});
+  std::vector<Vec2> pts = pointsNear(first, 400, 0.05);
+  expectAgrees(c, pts, 3.0);
+  // Samples of the curve beyond a diagonal from the points' box count by their distance
+  // to the box: at least the run's far end less the box.
+  const double stray = strayFromPoints(c, pts, 3.0);
+  EXPECT_GT(stray, 2.0e4);
+  EXPECT_LT(stray, 3.1e4);
+}
+
 // strayFromPoints against closed forms: a half circle of radius 5 over points along its
 // diameter strays by 5 (its top; the polyline of the points is the diameter), the same
 // half circle over points on it by at most the sagitta of their chords; a segment's

@@ -102,6 +102,11 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   throw PointFileError(name + ": " + what);
 }
 
+/// The end of a message about a limit of ReadLimits: its value and the flag that raises it.
+std::string limitNote(std::size_t limit, const char* flag) {
+  return " (the limit is " + std::to_string(limit) + "; lafit " + flag + " raises it)";
+}
+
 /// An excerpt of input for a message: at most kQuoteLength bytes, not cutting a UTF-8
 /// character, with control characters shown as '?' (a NUL would end the message where
 /// it stands, an ESC would drive the terminal).
@@ -259,11 +264,17 @@ std::optional<std::array<int, 4>> columnsFromHeader(const std::vector<std::strin
   return column;
 }
 
-std::vector<Stroke> parseDelimited(std::string_view text, const std::string& name, bool airfoil) {
+std::vector<Stroke> parseDelimited(std::string_view text, const std::string& name, bool airfoil,
+                                   const ReadLimits& limits) {
   std::vector<Stroke> strokes;
   Stroke current;
+  std::size_t line_number = 0;
   const auto endStroke = [&] {
-    if (!current.samples.empty()) strokes.push_back(std::move(current));
+    if (current.samples.empty()) return;
+    if (strokes.size() == limits.max_strokes)
+      failAt(name, line_number, "more than " + std::to_string(limits.max_strokes) + " strokes" +
+                                    limitNote(limits.max_strokes, "--max-strokes"));
+    strokes.push_back(std::move(current));
     current = Stroke{};
   };
   bool header_seen = false;
@@ -275,7 +286,7 @@ std::vector<Stroke> parseDelimited(std::string_view text, const std::string& nam
 
   const std::vector<std::string_view> lines = splitLines(text);
   for (std::size_t index = 0; index < lines.size(); ++index) {
-    const std::size_t line_number = index + 1;
+    line_number = index + 1;
     std::string_view line = lines[index];
     if (trim(line).empty()) {
       if (!airfoil) endStroke();
@@ -351,6 +362,10 @@ std::vector<Stroke> parseDelimited(std::string_view text, const std::string& nam
     // Absent columns are NaN; a column that is present must hold a finite number.
     if (present(kT) && !std::isfinite(sample.t)) failAt(name, line_number, "NaN or infinite time stamp");
     if (present(kPressure) && !std::isfinite(sample.pressure)) failAt(name, line_number, "NaN or infinite pressure");
+    if (current.samples.size() == limits.max_points_per_stroke)
+      failAt(name, line_number, "stroke " + std::to_string(strokes.size() + 1) + " has more than " +
+                                    std::to_string(limits.max_points_per_stroke) + " points" +
+                                    limitNote(limits.max_points_per_stroke, "--max-points"));
     current.samples.push_back(sample);
     data_seen = true;
   }
@@ -361,7 +376,28 @@ std::vector<Stroke> parseDelimited(std::string_view text, const std::string& nam
 
 // ------------------------------------------------------------------ JSON
 
-std::vector<Stroke> parseJson(const std::string& text, const std::string& name) {
+/// Offset of the first bracket nested deeper than `max_depth` in JSON text (outside
+/// strings), if any: checked before parsing, whose cost and recursion grow with depth.
+std::optional<std::size_t> tooDeep(std::string_view text, std::size_t max_depth) {
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth) return i;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
+std::vector<Stroke> parseJson(const std::string& text, const std::string& name, const ReadLimits& limits) {
   using nlohmann::json;
   // "<file>:<line>:<column>" of a 0-based offset in the text.
   const auto positionOf = [&](std::size_t offset) {
@@ -370,6 +406,9 @@ std::vector<Stroke> parseJson(const std::string& text, const std::string& name) 
       if (endsLine(text, i)) ++line, line_start = i + 1;
     return name + ":" + std::to_string(line) + ":" + std::to_string(offset - line_start + 1);
   };
+  if (const auto deep = tooDeep(text, limits.max_nesting))
+    throw PointFileError(positionOf(*deep) + ": JSON nested deeper than " + std::to_string(limits.max_nesting) +
+                         " levels" + limitNote(limits.max_nesting, "--max-nesting"));
   json doc;
   try {
     doc = json::parse(text);
@@ -401,6 +440,9 @@ std::vector<Stroke> parseJson(const std::string& text, const std::string& name) 
   if (!doc.is_object() || !doc.contains("strokes") || !doc["strokes"].is_array())
     failFile(name, "expected an object with a \"strokes\" array");
   const json& list = doc["strokes"];
+  if (list.size() > limits.max_strokes)
+    failFile(name, std::to_string(list.size()) + " strokes, more than " + std::to_string(limits.max_strokes) +
+                       limitNote(limits.max_strokes, "--max-strokes"));
   std::vector<Stroke> strokes;
   std::size_t total = 0;
   for (std::size_t i = 0; i < list.size(); ++i) {
@@ -410,6 +452,10 @@ std::vector<Stroke> parseJson(const std::string& text, const std::string& name) 
     if (!item.contains("points") || !item["points"].is_array())
       failFile(name, where + ".points: missing or not an array of [x, y]");
     const json& points = item["points"];
+    if (points.size() > limits.max_points_per_stroke)
+      failFile(name, where + ".points: " + std::to_string(points.size()) + " points, more than " +
+                         std::to_string(limits.max_points_per_stroke) +
+                         limitNote(limits.max_points_per_stroke, "--max-points"));
     Stroke stroke;
     stroke.samples.resize(points.size());
     for (std::size_t j = 0; j < points.size(); ++j) {
@@ -561,7 +607,10 @@ std::optional<Segment> arcSegment(const Vec2& from, double rx, double ry, double
 /// point last. Each point is evaluated on the segment itself; the chord-length table
 /// only chooses the parameters. A segment of zero length adds nothing; one whose length
 /// overflows a double adds nothing and returns false.
-bool appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec2>& out) {
+/// Thrown when an element would flatten to more than ReadLimits::max_svg_points.
+struct TooManyPoints {};
+
+bool appendFlattened(const Segment& segment, double max_spacing, std::size_t max_points, std::vector<Vec2>& out) {
   const int min_pieces = segment.kind == Segment::Kind::kLine ? 1 : kMinCurvePieces;
   std::vector<double> cumulative;
   const auto tabulate = [&](int steps) {
@@ -583,10 +632,13 @@ bool appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec
   if (!std::isfinite(length)) return false;  // and NaN pieces below would be undefined
   if (!(length > 0.0)) return true;
   int pieces = piecesFor(length);
+  // (before the length table and the points cost memory and time in proportion)
+  if (out.size() + static_cast<std::size_t>(pieces) > max_points) throw TooManyPoints{};
   if (segment.kind != Segment::Kind::kLine && 4 * pieces > steps) {
     steps = 4 * pieces;
     length = tabulate(steps);
     pieces = piecesFor(length);
+    if (out.size() + static_cast<std::size_t>(pieces) > max_points) throw TooManyPoints{};
   }
   for (int i = 1; i < pieces; ++i) {
     const double target = length * i / pieces;
@@ -604,8 +656,9 @@ bool appendFlattened(const Segment& segment, double max_spacing, std::vector<Vec
 /// The strokes of one SVG element: its drawn subpaths, flattened with a spacing taken
 /// from the bounding box of all of them. Returns false (and adds nothing) if the extent
 /// of the element, or of one of its segments, overflows a double: no spacing can be
-/// derived from it (coordinates near 1e308 that are each finite).
-bool flattenElement(const std::vector<Subpath>& subpaths, std::vector<Stroke>& strokes) {
+/// derived from it (coordinates near 1e308 that are each finite). Throws TooManyPoints
+/// past `max_points` points in all.
+bool flattenElement(const std::vector<Subpath>& subpaths, std::size_t max_points, std::vector<Stroke>& strokes) {
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
   Vec2 hi = -lo;
   for (const Subpath& sub : subpaths) {
@@ -626,19 +679,22 @@ bool flattenElement(const std::vector<Subpath>& subpaths, std::vector<Stroke>& s
   const double same_point = 1e-12 * diagonal;
 
   std::vector<Stroke> element_strokes;
+  std::size_t total = 0;
   for (const Subpath& sub : subpaths) {
     if (!sub.drawn) continue;
     std::vector<Vec2> points{sub.start};
+    const std::size_t room = max_points - std::min(total, max_points);
     for (const Segment& seg : sub.segments)
-      if (!appendFlattened(seg, max_spacing, points)) return false;
+      if (!appendFlattened(seg, max_spacing, room, points)) return false;
     if (sub.closed && points.size() > 1) {
       if ((points.back() - sub.start).norm() <= same_point) {
         points.pop_back();  // the path came back to its start itself
       } else {
-        if (!appendFlattened(lineSegment(points.back(), sub.start), max_spacing, points)) return false;
+        if (!appendFlattened(lineSegment(points.back(), sub.start), max_spacing, room + 1, points)) return false;
         points.pop_back();  // the start, already first
       }
     }
+    total += points.size();
     Stroke stroke;
     stroke.samples.reserve(points.size());
     for (const Vec2& q : points) stroke.samples.push_back(StrokeSample{q});
@@ -929,7 +985,8 @@ std::optional<Subpath> readPointList(std::string_view data, bool closed) {
 /// attributes without being fooled by comments, CDATA, declarations or quoted '>'.
 class SvgScanner {
  public:
-  SvgScanner(std::string_view text, const std::string& name) : m_text(text), m_name(name) {
+  SvgScanner(std::string_view text, const std::string& name, const ReadLimits& limits)
+      : m_text(text), m_name(name), m_limits(limits) {
     for (std::size_t i = 0; i < text.size(); ++i)
       if (endsLine(text, i)) m_line_starts.push_back(i + 1);
   }
@@ -937,6 +994,7 @@ class SvgScanner {
   std::vector<Stroke> read() {
     std::vector<Stroke> strokes;
     int hidden_depth = 0;  // inside <defs> and friends: not drawn as written
+    std::size_t depth = 0;  // open elements
     std::size_t i = 0;
     while ((i = m_text.find('<', i)) != std::string_view::npos) {
       const std::string_view rest = m_text.substr(i);
@@ -953,9 +1011,18 @@ class SvgScanner {
         if (end == std::string_view::npos) failAt(m_name, lineOf(i), "unterminated end tag");
         const std::string_view tag = localName(trim(m_text.substr(i + 2, end - i - 2)));
         if (hidden_depth > 0 && isHidden(tag)) --hidden_depth;
+        if (depth > 0) --depth;
         i = end + 1;
       } else {
-        i = readElement(i, hidden_depth, strokes);
+        bool open = false;
+        const std::size_t from = i;
+        i = readElement(i, hidden_depth, open, strokes);
+        if (open && ++depth > m_limits.max_nesting)
+          failAt(m_name, lineOf(from), "elements nested deeper than " + std::to_string(m_limits.max_nesting) +
+                                           limitNote(m_limits.max_nesting, "--max-nesting"));
+        if (strokes.size() > m_limits.max_strokes)
+          failAt(m_name, lineOf(from), "more than " + std::to_string(m_limits.max_strokes) + " strokes" +
+                                           limitNote(m_limits.max_strokes, "--max-strokes"));
       }
     }
     if (strokes.empty()) failFile(m_name, "no points (no <path>, <polyline> or <polygon> with coordinates)");
@@ -1017,7 +1084,7 @@ class SvgScanner {
   /// A start tag at `from`: reads its attributes and, for a shape outside hidden
   /// containers, its strokes. Returns the offset after the tag (or after the raw
   /// content of <script> / <style>).
-  std::size_t readElement(std::size_t from, int& hidden_depth, std::vector<Stroke>& strokes) {
+  std::size_t readElement(std::size_t from, int& hidden_depth, bool& open, std::vector<Stroke>& strokes) {
     std::size_t i = from + 1;
     const auto nameEnd = [&](std::size_t k) {
       while (k < m_text.size() && !isSpace(m_text[k]) && m_text[k] != '>' && m_text[k] != '/' && m_text[k] != '=')
@@ -1067,6 +1134,7 @@ class SvgScanner {
       attributes.push_back(attribute);
     }
 
+    open = !self_closing;
     if (!self_closing && (tag == "script" || tag == "style")) {
       const std::string closing = "</" + std::string(qualified);
       const std::size_t close = m_text.find(closing, i);
@@ -1095,8 +1163,12 @@ class SvgScanner {
         } else if (std::optional<Subpath> sub = readPointList(data, tag == "polygon")) {
           subpaths.push_back(std::move(*sub));
         }
-        if (!flattenElement(subpaths, strokes))
+        if (!flattenElement(subpaths, m_limits.max_svg_points, strokes))
           throw PathDataReader::Error{0, "coordinates too large to flatten: distances overflow a double"};
+      } catch (const TooManyPoints&) {
+        failAt(m_name, lineOf(from),
+               "<" + std::string(qualified) + "> flattens to more than " + std::to_string(m_limits.max_svg_points) +
+                   " points" + limitNote(m_limits.max_svg_points, "--max-svg-points"));
       } catch (const PathDataReader::Error& error) {
         const std::size_t line = has_references ? lineOf(from) : lineOf(attribute.offset + error.offset);
         failAt(m_name, line,
@@ -1144,6 +1216,7 @@ class SvgScanner {
 
   std::string_view m_text;
   const std::string& m_name;
+  const ReadLimits& m_limits;
   std::vector<std::size_t> m_line_starts{0};
 };
 
@@ -1166,20 +1239,20 @@ std::string readFile(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<Stroke> readStrokes(const std::filesystem::path& path) {
-  return parseStrokes(readFile(path), path.string());
+std::vector<Stroke> readStrokes(const std::filesystem::path& path, const ReadLimits& limits) {
+  return parseStrokes(readFile(path), path.string(), limits);
 }
 
-std::vector<Stroke> parseStrokes(const std::string& text, const std::string& name) {
+std::vector<Stroke> parseStrokes(const std::string& text, const std::string& name, const ReadLimits& limits) {
   const std::string extension = lower(std::filesystem::path(name).extension().string());
-  if (extension == ".json") return parseJson(text, name);
-  if (extension == ".svg") return SvgScanner(text, name).read();
+  if (extension == ".json") return parseJson(text, name, limits);
+  if (extension == ".svg") return SvgScanner(text, name, limits).read();
   if (extension == ".dat") {
-    std::vector<Stroke> profiles = parseDelimited(text, name, /*airfoil=*/true);
+    std::vector<Stroke> profiles = parseDelimited(text, name, /*airfoil=*/true, limits);
     for (Stroke& s : profiles) s.profile = true;
     return profiles;
   }
-  return parseDelimited(text, name, /*airfoil=*/false);
+  return parseDelimited(text, name, /*airfoil=*/false, limits);
 }
 
 }  // namespace la

@@ -74,6 +74,7 @@ int batchCommand(const std::vector<std::string>& argv) {
   const fs::path in_dir = args.positional()[0];
   if (!fs::is_directory(in_dir)) throw std::runtime_error(in_dir.string() + ": not a folder");
   const FitOptions options = fitOptionsFrom(args);
+  const ReadLimits limits = readLimitsFrom(args);
 
   // OUTDIR beside the inputs would mix the curves with them (a run after would read them
   // back); inside DIR it is left out of the scan.
@@ -117,7 +118,7 @@ int batchCommand(const std::vector<std::string>& argv) {
       row.name = rel.string();
       try {
         const auto t0 = std::chrono::steady_clock::now();
-        const FileFit fit = fitFile(files[i], options, args.has("--stages"));
+        const FileFit fit = fitFile(files[i], options, limits, args.has("--stages"));
         row.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         row.strokes = static_cast<int>(fit.strokes.size());
         row.failed = fit.failed();

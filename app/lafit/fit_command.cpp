@@ -1,7 +1,9 @@
 // `lafit fit`: one input file (one or several strokes) to fair curves.
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <thread>
 
 #include "app/lafit/commands.h"
 #include "app/lafit/fit_file.h"
@@ -25,6 +27,9 @@ outputs:
                   --y-up for data whose y axis points up: profiles, font outlines)
   --csv FILE.csv  samples x,y,s,theta,kappa (a blank line between curves)
   --dxf FILE.dxf  one SPLINE per curve
+
+  --jobs N        strokes fitted in parallel (default: all cores; the curves do not
+                  depend on it)
 
 A stroke that cannot be fitted (a dot, two points) gets {"error": "why"} in the
 JSON and the others are still fitted; if none can be, no output file is written (an
@@ -61,6 +66,7 @@ void printFigures(const FileFit& fit) {
 int fitCommand(const std::vector<std::string>& argv) {
   std::set<std::string> valued = kOutputOptions, flags = kOutputFlags;
   valued.insert(kFitValued.begin(), kFitValued.end());
+  valued.insert("--jobs");
   flags.insert(kFitFlags.begin(), kFitFlags.end());
   flags.insert("--help");
   const Args args(argv, valued, flags);
@@ -70,7 +76,9 @@ int fitCommand(const std::vector<std::string>& argv) {
   }
   if (args.positional().size() != 1) throw UsageError("fit needs exactly one INPUT file");
   const FitOptions options = fitOptionsFrom(args);
-  const FileFit fit = fitFile(args.positional()[0], options, args.has("--stages"));
+  const int jobs = args.integer("--jobs", static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  if (jobs < 1) throw UsageError("--jobs must be at least 1");
+  const FileFit fit = fitFile(args.positional()[0], options, readLimitsFrom(args), args.has("--stages"), jobs);
   printFigures(fit);
   for (const std::string& error : fit.errors)
     if (!error.empty()) std::cerr << "lafit fit: " << error << "\n";

@@ -1,5 +1,10 @@
 #include "app/lafit/fit_file.h"
 
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
+
 #include <new>
 
 #include "app/io/fit_json.h"
@@ -36,33 +41,57 @@ int FileFit::failed() const {
   return n;
 }
 
-FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, bool with_stages) {
+FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, const ReadLimits& limits,
+                bool with_stages, int jobs) {
   FileFit out;
-  out.strokes = readStrokes(input);
-  nlohmann::json curves = nlohmann::json::array();
-  for (std::size_t i = 0; i < out.strokes.size(); ++i) {
+  out.strokes = readStrokes(input, limits);
+  const std::size_t n = out.strokes.size();
+  std::vector<nlohmann::json> entries(n);
+  out.results.resize(n);
+  out.errors.resize(n);
+  auto fitOne = [&](std::size_t i) {
     const std::string where = input.string() + ": stroke " + std::to_string(i + 1) + ": ";
-    std::string why;
     try {
       FitResult r = fitStroke(out.strokes[i], options);
-      curves.push_back(fitResultToJson(r, out.strokes[i], with_stages));
-      out.results.push_back(std::move(r));
-      out.errors.emplace_back();
-      continue;
+      entries[i] = fitResultToJson(r, out.strokes[i], with_stages);
+      out.results[i] = std::move(r);
+      return;
     } catch (const StrokeError& e) {  // a dot, a straight tap: this stroke only
-      why = where + e.what();
+      out.errors[i] = where + e.what();
     } catch (const std::bad_alloc&) {
       throw;
     } catch (const std::exception& e) {
       // A stage refusing what the clean-up let through (a closed stroke of 3 points did,
       // until the clean-up refused it): still this stroke only, and the message must
       // say which file and stroke, which the stage's own words do not.
-      why = where + "stroke cannot be fitted: " + e.what();
+      out.errors[i] = where + "stroke cannot be fitted: " + e.what();
     }
-    curves.push_back({{"error", why}});
-    out.results.emplace_back();
-    out.errors.push_back(why);
-  }
+    entries[i] = {{"error", out.errors[i]}};
+  };
+  // The strokes of one file are independent: fitted on `jobs` threads, each taking the
+  // next stroke, results in file order. (An exception other than a stroke's own, out of
+  // memory, ends the file: the first one is rethrown after the threads stop.)
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  auto worker = [&] {
+    for (std::size_t i; (i = next++) < n;) {
+      try {
+        fitOne(i);
+      } catch (...) {
+        const std::lock_guard lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+        next = n;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 1; j < std::min<int>(jobs, static_cast<int>(n)); ++j) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  nlohmann::json curves = nlohmann::json::array();
+  for (nlohmann::json& entry : entries) curves.push_back(std::move(entry));
   out.document = curves.size() == 1 && !curves[0].contains("error") ? curves[0] : nlohmann::json{{"curves", curves}};
   out.document["options"] = fitOptionsToJson(options);
   stampCurvesFormat(out.document);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/io/point_file.h"
 #include "fitting/pipeline.h"
 #include "nlohmann/json.hpp"
 
@@ -22,7 +23,9 @@ struct FileFit {
   int failed() const;
 };
 
-/// Throws PointFileError for an unreadable file.
-FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, bool with_stages);
+/// Throws PointFileError for an unreadable file. The strokes are fitted on `jobs`
+/// threads (the results do not depend on it).
+FileFit fitFile(const std::filesystem::path& input, const FitOptions& options, const ReadLimits& limits,
+                bool with_stages, int jobs = 1);
 
 }  // namespace la::cli

@@ -1,6 +1,18 @@
 #include "app/lafit/fit_options.h"
 
+#include <cmath>
+
 namespace la::cli {
+namespace {
+
+std::size_t positiveCount(const Args& args, const std::string& flag, std::size_t fallback) {
+  const double value = args.number(flag, static_cast<double>(fallback));
+  if (!(value >= 1.0) || value != std::floor(value) || value > 1e15)
+    throw UsageError(flag + " takes a whole number of at least 1");
+  return static_cast<std::size_t>(value);
+}
+
+}  // namespace
 
 FitOptions fitOptionsFrom(const Args& args) {
   FitOptions o;
@@ -24,9 +36,18 @@ FitOptions fitOptionsFrom(const Args& args) {
   o.polish = !args.has("--paper-only");
   o.time_budget_ms = args.number("--time-budget", 0.0);
   if (!(o.time_budget_ms >= 0.0)) throw UsageError("--time-budget must be at least 0 (ms; 0: no limit)");
-  o.time_budget_ms = args.number("--time-budget", 0.0);
-  if (!(o.time_budget_ms >= 0.0)) throw UsageError("--time-budget must be at least 0 (ms; 0: no limit)");
+  o.max_points = positiveCount(args, "--max-points", o.max_points);
+  o.max_polish_segments = positiveCount(args, "--max-polish-segments", o.max_polish_segments);
   return o;
+}
+
+ReadLimits readLimitsFrom(const Args& args) {
+  ReadLimits limits;
+  limits.max_points_per_stroke = positiveCount(args, "--max-points", limits.max_points_per_stroke);
+  limits.max_strokes = positiveCount(args, "--max-strokes", limits.max_strokes);
+  limits.max_svg_points = positiveCount(args, "--max-svg-points", limits.max_svg_points);
+  limits.max_nesting = positiveCount(args, "--max-nesting", limits.max_nesting);
+  return limits;
 }
 
 }  // namespace la::cli

@@ -4,13 +4,16 @@
 #include <set>
 #include <string>
 
+#include "app/io/point_file.h"
 #include "app/lafit/cli_args.h"
 #include "fitting/pipeline.h"
 
 namespace la::cli {
 
 inline const std::set<std::string> kFitValued = {"--tolerance", "--tolerance-abs", "--max-extrema", "--g2",
-                                                 "--g2-threshold", "--significance", "--time-budget"};
+                                                 "--g2-threshold", "--significance", "--time-budget",
+                                                 "--max-points", "--max-polish-segments", "--max-strokes",
+                                                 "--max-svg-points", "--max-nesting"};
 inline const std::set<std::string> kFitFlags = {"--no-corners", "--no-close", "--closed", "--paper-only", "--stages"};
 
 inline constexpr const char* kFitOptionsHelp = R"(fitting options:
@@ -36,8 +39,21 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
                        runs out, stage 7 stops and keeps the best G2 chain found so far,
                        with a warning (the cap of --max-extrema still holds)
   --stages             include every intermediate stage in the JSON
+
+limits (the work one input may cost; over a limit the file or stroke is refused, or
+stage 7 left out, with a message naming the flag):
+  --max-points N       raw samples in one stroke (default 1000000)
+  --max-polish-segments N
+                       segments in all (of the stages 1-6 chains) that stage 7 fits in
+                       one stroke (default 40; it fits a part's whole chain at once, at
+                       a cost growing with their cube); the other parts keep stage 6's
+  --max-strokes N      strokes in one file (default 100000)
+  --max-svg-points N   points one SVG element flattens to (default 200000)
+  --max-nesting N      JSON arrays/objects or SVG elements nested (default 256)
 )";
 
 FitOptions fitOptionsFrom(const Args& args);
+/// The reader limits of the flags above (app/io/point_file.h).
+ReadLimits readLimitsFrom(const Args& args);
 
 }  // namespace la::cli
