@@ -36,9 +36,11 @@
 #include "app/gui/comb_panel.h"
 #include "app/gui/construction_panel.h"
 #include "app/gui/curvature_plot.h"
+#include "app/gui/import_placement_dialog.h"
 #include "app/gui/lcg_plot.h"
 #include "app/gui/oversketch.h"
 #include "app/gui/parameter_panel.h"
+#include "app/gui/point_import.h"
 #include "app/io/curve_export.h"
 #include "app/io/point_file.h"
 #include "core/atomic_file.h"
@@ -57,6 +59,23 @@ constexpr int kPreviewMinPoints = 8;
 constexpr int kRecentFiles = 8;
 // Exported Bezier paths stay within this fraction of the fit tolerance of the LA curves.
 constexpr double kExportToleranceOfFit = 0.1;
+// How long the status bar says where an import went, before the fit's figures return.
+constexpr int kImportMessageMs = 15000;
+
+const char* settingName(ImportPlacement p) {
+  switch (p) {
+    case ImportPlacement::kFitToView: return "fit-to-view";
+    case ImportPlacement::kOwnCoordinates: return "own-coordinates";
+    case ImportPlacement::kAsk: break;
+  }
+  return "ask";
+}
+
+ImportPlacement placementFromSetting(const QString& name) {
+  if (name == "fit-to-view") return ImportPlacement::kFitToView;
+  if (name == "own-coordinates") return ImportPlacement::kOwnCoordinates;
+  return ImportPlacement::kAsk;
+}
 
 class AddStrokeCommand : public QUndoCommand {
  public:
@@ -77,6 +96,35 @@ class AddStrokeCommand : public QUndoCommand {
   MainWindow* m_window;
   Stroke m_stroke;
   std::size_t m_index = 0;
+};
+
+// An import: every stroke of a file as one step, added as drawn strokes are (provisional,
+// stage 7 in the background). Where they hold more samples together than one pen-up may
+// fit on the UI thread (Document::kOffThreadFitSamples), all are inserted unfitted and
+// fitted entirely in the background: a large file never holds the UI past a frame.
+class ImportStrokesCommand : public QUndoCommand {
+ public:
+  ImportStrokesCommand(MainWindow* w, const QString& text, std::vector<Stroke> strokes)
+      : QUndoCommand(text), m_window(w), m_strokes(std::move(strokes)) {}
+  void redo() override {
+    Document& d = m_window->document();
+    m_first = d.strokes().size();
+    std::size_t samples = 0;
+    for (const Stroke& s : m_strokes) samples += s.samples.size();
+    const bool unfitted = samples > Document::kOffThreadFitSamples;
+    for (std::size_t k = 0; k < m_strokes.size(); ++k) d.insertStroke(m_first + k, m_strokes[k], /*provisional=*/true, unfitted);
+    for (std::size_t k = 0; k < m_strokes.size(); ++k) m_window->fitInBackground(m_first + k);
+    m_window->documentChanged();
+  }
+  void undo() override {
+    for (std::size_t k = m_strokes.size(); k-- > 0;) m_window->document().removeStroke(m_first + k);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  std::vector<Stroke> m_strokes;
+  std::size_t m_first = 0;
 };
 
 // An oversketch: stroke `index` replaced by the spliced raw stroke, refitted like a drawn
@@ -380,6 +428,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   buildToolBar();
   m_export_points = QSettings().value("export/points", false).toBool();
   m_export_comb = QSettings().value("export/comb", false).toBool();
+  m_import_placement = placementFromSetting(QSettings().value("import/placement", "ask").toString());
   buildMenus();
   // The document's units, in the status bar: exports state them (DXF $INSUNITS).
   auto* units = new QComboBox;
@@ -833,19 +882,60 @@ bool MainWindow::saveFile(const QString& path) {
   return true;
 }
 
-bool MainWindow::importPoints(const QString& path) {
-  std::vector<Stroke> strokes;
-  try {
-    strokes = readStrokes(path.toStdString());
-  } catch (const std::exception& e) {
-    showError(QString::fromStdString(e.what()));
+bool MainWindow::importPoints(const QString& path, std::optional<ImportPlacement> placement) {
+  if (m_importing) {
+    showError("an import is running: wait for it or cancel it first");
     return false;
   }
-  m_undo->beginMacro("import " + QFileInfo(path).fileName());
-  for (const Stroke& s : strokes) addStroke(s);
-  m_undo->endMacro();
-  m_canvas->fitView();
+  const QString name = QFileInfo(path).fileName();
+  ImportPlacement how = placement.value_or(m_import_placement);
+  if (how == ImportPlacement::kAsk && qEnvironmentVariableIsSet("LAFAIR_NO_DIALOGS")) {
+    how = ImportPlacement::kOwnCoordinates;  // as imports always were
+  } else if (how == ImportPlacement::kAsk) {
+    const QString last = QSettings().value("import/last_placement", "fit-to-view").toString();
+    ImportPlacementDialog ask(this, name, QString::fromStdString(m_document.units()), placementFromSetting(last));
+    if (ask.exec() != QDialog::Accepted) return false;
+    how = ask.choice();
+    QSettings().setValue("import/last_placement", settingName(how));
+    if (ask.remember()) setImportPlacement(how);
+  }
+  std::optional<WorldBox> view;
+  if (how == ImportPlacement::kFitToView) {
+    const QPointF a = m_canvas->toWorld(QPointF(0, 0)), b = m_canvas->toWorld(QPointF(m_canvas->width(), m_canvas->height()));
+    view = WorldBox{Vec2(std::min(a.x(), b.x()), std::min(a.y(), b.y())), Vec2(std::max(a.x(), b.x()), std::max(a.y(), b.y()))};
+  }
+  m_importing = true;
+  ReadPointsResult read = readPointsOffThread(this, path, view);
+  m_importing = false;
+  if (read.status == ReadPointsResult::Status::kCancelled) {
+    showMessage("import of " + name + " cancelled: the sketch is unchanged");
+    return false;
+  }
+  if (read.status != ReadPointsResult::Status::kRead) {
+    showError(QString::fromStdString(read.error));  // "file:line: what"; the sketch is untouched
+    return false;
+  }
+  const std::size_t count = read.strokes.size();
+  m_undo->push(new ImportStrokesCommand(this, "import " + name, std::move(read.strokes)));
+  QString where;
+  if (read.placed) {
+    where = QString("imported at scale %1 (fitted to the view)").arg(read.placed->scale, 0, 'g', 4);
+  } else {
+    m_canvas->fitView();
+    const std::string& units = m_document.units();
+    where = QString("imported at its own coordinates (%1)").arg(units.empty() ? QString("unitless") : QString::fromStdString(units));
+  }
+  statusBar()->showMessage(QString("%1: %2 stroke%3 %4").arg(name).arg(count).arg(count == 1 ? "" : "s").arg(where),
+                           kImportMessageMs);
   return true;
+}
+
+void MainWindow::setImportPlacement(ImportPlacement placement) {
+  m_import_placement = placement;
+  QSettings().setValue("import/placement", settingName(placement));
+  if (m_placement_actions)
+    for (QAction* a : m_placement_actions->actions())
+      if (a->data().toInt() == static_cast<int>(placement)) a->setChecked(true);
 }
 
 void MainWindow::setExportExtras(bool points, bool comb) {
@@ -980,6 +1070,22 @@ void MainWindow::buildMenus() {
     const QString p = QFileDialog::getOpenFileName(this, "Import points", {}, "Points (*.csv *.txt *.dat *.json *.svg)");
     if (!p.isEmpty()) importPoints(p);
   });
+  // Where imported points go (import_placement.h): asked, or the remembered answer.
+  QMenu* placement = file->addMenu("Import p&lacement");
+  placement->setObjectName("import-placement-menu");
+  m_placement_actions = new QActionGroup(this);
+  m_placement_actions->setExclusive(true);
+  for (const auto& [what, text] : {std::pair{ImportPlacement::kAsk, "&Ask on each import"},
+                                   std::pair{ImportPlacement::kFitToView, "&Fit to the view"},
+                                   std::pair{ImportPlacement::kOwnCoordinates, "At their &own coordinates"}}) {
+    QAction* a = placement->addAction(text);
+    a->setObjectName(QString("import-") + settingName(what));
+    a->setCheckable(true);
+    a->setData(static_cast<int>(what));
+    a->setChecked(what == m_import_placement);
+    m_placement_actions->addAction(a);
+    connect(a, &QAction::triggered, this, [this, what] { setImportPlacement(what); });
+  }
   file->addAction("&Export curves…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export curves", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
     if (!p.isEmpty()) exportFile(p);
