@@ -57,6 +57,9 @@ constexpr int kPreviewMinIntervalMs = 30;
 constexpr double kPreviewCostFactor = 4.0;
 constexpr int kPreviewMinPoints = 8;
 constexpr int kRecentFiles = 8;
+// "All visible strokes" follows a pan or zoom at most this often (a frame and a half):
+// it samples every visible curve, too much for every mouse move of a pan.
+constexpr int kPlotRefreshMs = 25;
 // Exported Bezier paths stay within this fraction of the fit tolerance of the LA curves.
 constexpr double kExportToleranceOfFit = 0.1;
 // How long the status bar says where an import went, before the fit's figures return.
@@ -302,6 +305,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   plot_dock->setObjectName("curvature-plot");
   plot_dock->setWidget(m_plot);
   addDockWidget(Qt::BottomDockWidgetArea, plot_dock);
+  m_plot_refresh = new QTimer(this);
+  m_plot_refresh->setSingleShot(true);
+  m_plot_refresh->setInterval(kPlotRefreshMs);
+  connect(m_plot_refresh, &QTimer::timeout, this, &MainWindow::refreshCurvaturePlot);
+  connect(m_plot, &CurvaturePlot::scopeChanged, this, &MainWindow::refreshCurvaturePlot);
 
   m_lcg = new LcgPlot;
   auto* lcg_dock = new QDockWidget("LCG of the selected segment (click it with V, or right-click)", this);
@@ -335,6 +343,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_status = new QLabel("draw with the pen or the mouse (B); V selects and moves, H or Space pans, the wheel zooms");
   statusBar()->addWidget(m_status, 1);
 
+  connect(m_canvas, &Canvas::viewChanged, this, [this] {
+    if (m_plot->scope() == CurvaturePlot::Scope::kAllVisible) m_plot_refresh->start();
+  });
   connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::strokeDrawn);
   connect(m_canvas, &Canvas::strokeProgress, this, &MainWindow::updatePreview);
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
@@ -386,7 +397,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   // undoable edit on release.
   auto preview_edit = [this](int stroke, const std::function<std::optional<FitResult>(const FitResult&)>& edit) {
     const auto& s = m_document.strokes()[static_cast<std::size_t>(stroke)];
-    if (s.fit) m_canvas->setPreview(edit(*s.fit));
+    if (!s.fit) return;
+    m_canvas->setPreview(edit(*s.fit));
+    // the plot follows the handle: the edited curve's curvature, live
+    if (const auto& live = m_canvas->preview()) {
+      plotCurvature(&*live, stroke);
+      m_plot->setHighlight(stroke == m_selected_stroke ? m_selected_piece : -1);
+    }
   };
   connect(m_canvas, &Canvas::jointDragged, this, [=, this](int stroke, int joint, const QPointF& w) {
     preview_edit(stroke, [&](const FitResult& f) {
@@ -500,6 +517,7 @@ void MainWindow::updatePreview() {
   quick.polish = false;  // the preview keeps up with the pen; the pen-up fit adds stage 7
   try {
     m_canvas->setPreview(fitStroke(current, quick));
+    plotCurvature(&*m_canvas->preview(), -1);  // the plot follows the pen
   } catch (const StrokeError&) {
     m_canvas->setPreview(std::nullopt);  // too few points yet
   }
@@ -515,7 +533,7 @@ void MainWindow::selectSegment(int stroke, int piece) {
   m_selected_piece = piece;
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
-  if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
+  if (fit) plotCurvature(fit, stroke);  // the plot follows the selected stroke
   m_plot->setHighlight(fit ? piece : -1);
   const std::string fixed = fit && piece >= 0 ? whyAlphaIsFixed(*fit, static_cast<std::size_t>(piece)) : "select a segment first (click it with V, or right-click it)";
   m_parameters->setSegmentAlpha(fixed.empty(), fixed.empty() ? fit->curve.pieces[piece].segment.alpha() : 0.0,
@@ -527,6 +545,50 @@ void MainWindow::selectSegment(int stroke, int piece) {
                           .arg(seg.kappaStart(), 0, 'g', 3).arg(seg.kappaEnd(), 0, 'g', 3)
                           .arg(toString(fit->pieces[piece].kind)));
   }
+}
+
+void MainWindow::plotCurvature(const FitResult* shown, int stroke) {
+  if (m_plot->scope() == CurvaturePlot::Scope::kSelectedStroke) {
+    m_plot->setFit(shown);
+    return;
+  }
+  const QPointF a = m_canvas->toWorld(QPointF(0, 0)), b = m_canvas->toWorld(QPointF(m_canvas->width(), m_canvas->height()));
+  const QRectF view = QRectF(a, b).normalized();
+  std::vector<const FitResult*> fits;
+  int highlighted = -1;
+  const auto& strokes = m_document.strokes();
+  for (std::size_t i = 0; i < strokes.size(); ++i) {
+    const bool this_one = static_cast<int>(i) == stroke;
+    const FitResult* fit = this_one ? shown : (strokes[i].fit ? &*strokes[i].fit : nullptr);
+    const std::optional<WorldBox> box = boundsOf({strokes[i].raw});
+    // (a straight stroke's box has no area: widened a little so it can meet the view)
+    if (!fit || !box || !view.intersects(QRectF(QPointF(box->lo.x(), box->lo.y()), QPointF(box->hi.x(), box->hi.y()))
+                                             .adjusted(-1e-9, -1e-9, 1e-9, 1e-9)))
+      continue;
+    if (this_one) highlighted = static_cast<int>(fits.size());
+    fits.push_back(fit);
+  }
+  if (stroke < 0 && shown) {  // the stroke being drawn
+    highlighted = static_cast<int>(fits.size());
+    fits.push_back(shown);
+  }
+  m_plot->setCurves(fits, highlighted);
+}
+
+void MainWindow::refreshCurvaturePlot() {
+  const auto& strokes = m_document.strokes();
+  if (m_selected_stroke >= 0 && m_selected_stroke < static_cast<int>(strokes.size()) && strokes[m_selected_stroke].fit) {
+    plotCurvature(&*strokes[m_selected_stroke].fit, m_selected_stroke);
+    m_plot->setHighlight(m_selected_piece);
+    return;
+  }
+  if (m_selected_construction >= 0) {
+    selectConstruction(m_selected_construction);  // (shows its curve)
+    return;
+  }
+  for (int i = static_cast<int>(strokes.size()) - 1; i >= 0; --i)
+    if (strokes[i].fit) return plotCurvature(&*strokes[i].fit, i);
+  plotCurvature(nullptr, -1);
 }
 
 void MainWindow::addConstruction(ConstructionKind kind) {
@@ -708,9 +770,10 @@ void MainWindow::documentChanged() {
   m_canvas->selection().set(m_document, selectedStrokes());  // (forgets strokes no longer there)
   m_canvas->update();
   const FitResult* last = nullptr;
-  for (const DocumentStroke& s : m_document.strokes())
-    if (s.fit) last = &*s.fit;
-  m_plot->setFit(last);
+  int last_index = -1;
+  for (std::size_t i = 0; i < m_document.strokes().size(); ++i)
+    if (m_document.strokes()[i].fit) last = &*m_document.strokes()[i].fit, last_index = static_cast<int>(i);
+  plotCurvature(last, last_index);
   selectSegment(-1, -1);
   selectConstruction(m_selected_construction);
   const bool fitting_huge = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
@@ -923,9 +986,9 @@ bool MainWindow::importPoints(const QString& path, std::optional<ImportPlacement
   } else {
     m_canvas->fitView();
     const std::string& units = m_document.units();
-    where = QString("imported at its own coordinates (%1)").arg(units.empty() ? QString("unitless") : QString::fromStdString(units));
+    where = QString("imported at their own coordinates (%1)").arg(units.empty() ? QString("unitless") : QString::fromStdString(units));
   }
-  statusBar()->showMessage(QString("%1: %2 stroke%3 %4").arg(name).arg(count).arg(count == 1 ? "" : "s").arg(where),
+  statusBar()->showMessage(QString("%1: %2 stroke%3, %4").arg(name).arg(count).arg(count == 1 ? "" : "s").arg(where),
                            kImportMessageMs);
   return true;
 }

@@ -142,6 +142,10 @@ class MainWindow : public QMainWindow {
   void showError(const QString& what);
   void autosave();
   void updatePreview();  // live fit of the stroke being drawn, as often as time allows
+  // The curvature plot shows `shown` as stroke `stroke`'s curve (-1: a stroke being drawn):
+  // alone, or among every visible stroke (the plot's scope), highlighted.
+  void plotCurvature(const FitResult* shown, int stroke);
+  void refreshCurvaturePlot();  // after a change of scope or view: what the selection shows
   void rememberRecent(const QString& path);
   void refreshRecentMenu();
 
@@ -156,6 +160,7 @@ class MainWindow : public QMainWindow {
   double m_oversketch_reach = 8.0;  // pixels (kDefaultOversketchReachPixels)
   CurvaturePlot* m_plot = nullptr;
   LcgPlot* m_lcg = nullptr;
+  QTimer* m_plot_refresh = nullptr;  // coalesces the view changes of a pan or zoom
   QMenu* m_recent = nullptr;
   int m_selected_stroke = -1, m_selected_piece = -1;
   double m_preview_ms = 0.0;   // time of the last live fit
