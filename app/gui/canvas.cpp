@@ -80,6 +80,7 @@ void Canvas::fitView() {
   if (!std::isfinite(x0)) {
     m_view = QTransform();
     update();
+    emit viewChanged();
     return;
   }
   const double w = std::max(x1 - x0, 1e-9), h = std::max(y1 - y0, 1e-9);
@@ -89,6 +90,7 @@ void Canvas::fitView() {
   m_view.scale(scale, m_layers.y_up ? -scale : scale);
   m_view.translate(-(x0 + x1) / 2.0, -(y0 + y1) / 2.0);
   update();
+  emit viewChanged();
 }
 
 void Canvas::setPreview(std::optional<FitResult> preview) {
@@ -153,6 +155,7 @@ void Canvas::zoomAbout(const QPointF& c, double factor) {
   zoom.translate(-c.x(), -c.y());
   m_view = m_view * zoom;
   update();
+  emit viewChanged();
 }
 
 void Canvas::setSelection(int stroke, int piece) {
@@ -363,6 +366,7 @@ void Canvas::mouseMoveEvent(QMouseEvent* e) {
     shift.translate(d.x(), d.y());
     m_view = m_view * shift;
     update();
+    emit viewChanged();
   } else if (m_drag_handle >= 0) {
     emit handleDragged(m_drag_construction, m_drag_handle, toWorld(e->position()));
   } else if (m_drag_piece >= 0) {

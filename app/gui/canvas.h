@@ -53,6 +53,7 @@ class Canvas : public QWidget {
   /// The live fit of the stroke being drawn (shown until the pen lifts), or none.
   void setPreview(std::optional<FitResult> preview);
   bool hasPreview() const { return m_preview.has_value(); }
+  const std::optional<FitResult>& preview() const { return m_preview; }
   const Stroke& currentStroke() const { return m_current; }
   void setSelection(int stroke, int piece);  // the selected segment (the LCG and alpha panels follow it)
   Tool tool() const { return m_tool; }
@@ -84,6 +85,7 @@ class Canvas : public QWidget {
   void strokeFinished(const la::Stroke& stroke);
   void strokeProgress();
   void cursorMoved(const QPointF& world);
+  void viewChanged();  // zoom, pan, fit view (what is visible changed)
   void segmentClicked(int stroke, int piece);  // right click near a segment, or a Select-tool click (-1: none)
   void selectionChanged();
   /// A Select-tool drag moved the selected strokes by `d` (world) since the last signal;

@@ -19,6 +19,9 @@ constexpr double kLogDecades = 4.0;
 const QColor kBeforeColor(150, 150, 150);
 const QColor kAfterColor(21, 101, 192);
 const QColor kHighlightColor(255, 143, 0, 45);  // the canvas' selected-segment orange, faint
+// The other strokes of "all visible strokes": muted, distinct, none the selected blue.
+const QColor kOtherColors[] = {{120, 144, 156}, {188, 170, 164}, {165, 214, 167}, {206, 147, 216}, {255, 204, 128},
+                               {128, 203, 196}};
 
 }  // namespace
 
@@ -33,6 +36,34 @@ CurvaturePlot::CurvaturePlot(QWidget* parent) : QWidget(parent) {
   m_mode_box->setFocusPolicy(Qt::ClickFocus);
   connect(m_mode_box, &QComboBox::currentIndexChanged, this,
           [this](int i) { setMode(static_cast<Mode>(m_mode_box->itemData(i).toInt())); });
+  m_scope_box = new QComboBox(this);
+  m_scope_box->setObjectName("curvature-plot-scope");
+  m_scope_box->addItem("selected stroke", static_cast<int>(Scope::kSelectedStroke));
+  m_scope_box->addItem("all visible strokes", static_cast<int>(Scope::kAllVisible));
+  m_scope_box->adjustSize();
+  m_mode_box->adjustSize();
+  m_scope_box->move(m_mode_box->geometry().right() + 6, 3);
+  m_scope_box->setFocusPolicy(Qt::ClickFocus);
+  connect(m_scope_box, &QComboBox::currentIndexChanged, this,
+          [this](int i) { setScope(static_cast<Scope>(m_scope_box->itemData(i).toInt())); });
+}
+
+void CurvaturePlot::setScope(Scope scope) {
+  const int i = m_scope_box->findData(static_cast<int>(scope));
+  if (m_scope_box->currentIndex() != i) m_scope_box->setCurrentIndex(i);  // (comes back here)
+  if (scope == m_scope) return;
+  m_scope = scope;
+  emit scopeChanged(scope);
+}
+
+std::vector<double> CurvaturePlot::curveLengths() const {
+  std::vector<double> out;
+  if (m_scope == Scope::kAllVisible && !m_curves.empty()) {
+    for (const Series& c : m_curves) out.push_back(c.s.empty() ? 0.0 : c.s.back());
+  } else if (!m_after.s.empty()) {
+    out.push_back(m_after.s.back());
+  }
+  return out;
 }
 
 void CurvaturePlot::setMode(Mode mode) {
@@ -57,22 +88,43 @@ std::vector<std::pair<double, double>> CurvaturePlot::afterPoints() const {
   return out;
 }
 
+void CurvaturePlot::setCurves(const std::vector<const FitResult*>& fits, int highlighted) {
+  m_before = {};
+  m_after = {};
+  m_curves.clear();
+  m_joints.clear();
+  m_highlight = {0.0, 0.0};
+  m_highlighted = highlighted >= 0 && highlighted < static_cast<int>(fits.size()) ? highlighted : -1;
+  for (std::size_t k = 0; k < fits.size(); ++k)
+    m_curves.push_back(laCurvature(*fits[k], static_cast<int>(k) == m_highlighted ? &m_joints : nullptr));
+  if (m_highlighted >= 0) m_after = m_curves[static_cast<std::size_t>(m_highlighted)];
+  update();
+}
+
+CurvaturePlot::Series CurvaturePlot::laCurvature(const FitResult& fit, std::vector<double>* joints) {
+  Series out;
+  double s0 = 0.0;
+  for (const CurvePiece& piece : fit.curve.pieces) {
+    const CurveSamples smp = piece.segment.sample(kSamplesPerSegment);
+    for (std::size_t i = 0; i < smp.size(); ++i) {
+      out.s.push_back(s0 + smp.s[i]);
+      out.kappa.push_back(smp.kappa[i]);
+    }
+    if (joints) joints->push_back(s0);
+    s0 += piece.segment.length();
+  }
+  return out;
+}
+
 void CurvaturePlot::setFit(const FitResult* fit) {
   m_before = {};
   m_after = {};
+  m_curves.clear();
+  m_highlighted = -1;
   m_joints.clear();
   m_highlight = {0.0, 0.0};
   if (fit) {
-    double s0 = 0.0;
-    for (const CurvePiece& piece : fit->curve.pieces) {
-      const CurveSamples smp = piece.segment.sample(kSamplesPerSegment);
-      for (std::size_t i = 0; i < smp.size(); ++i) {
-        m_after.s.push_back(s0 + smp.s[i]);
-        m_after.kappa.push_back(smp.kappa[i]);
-      }
-      m_joints.push_back(s0);
-      s0 += piece.segment.length();
-    }
+    m_after = laCurvature(*fit, &m_joints);
     // the splines, sampled uniformly in parameter, with arc length accumulated
     double s = 0.0;
     for (const CubicBSpline& spline : fit->splines) {
@@ -93,6 +145,8 @@ void CurvaturePlot::setFit(const FitResult* fit) {
 void CurvaturePlot::setCurve(const std::vector<double>& s, const std::vector<double>& kappa,
                              const std::vector<double>& joints) {
   m_before = {};
+  m_curves.clear();
+  m_highlighted = -1;
   m_after = {s, kappa};
   m_joints = joints;
   m_highlight = {0.0, 0.0};
@@ -112,7 +166,7 @@ QRectF CurvaturePlot::plotArea() const { return QRectF(62, kTopMargin, width() -
 
 QRectF CurvaturePlot::legendRect() const {
   // right of the mode box, in the top margin
-  const double left = m_mode_box->geometry().right() + 12;
+  const double left = m_scope_box->geometry().right() + 12;
   return QRectF(left, 2, std::max(0.0, width() - left - 8), kTopMargin - 6);
 }
 
@@ -121,14 +175,19 @@ void CurvaturePlot::paintEvent(QPaintEvent*) {
   const QRectF area = plotArea();
   const char* y_label = m_mode == Mode::kCurvature ? "curvature κ" : (m_mode == Mode::kRadius ? "radius" : "|κ| (log)");
   drawChartPage(p, *this, area, "arc length s", y_label);
-  if (m_after.s.empty()) {
-    p.drawText(area, Qt::AlignCenter, "draw a stroke to see its curvature");
+  if (m_after.s.empty() && m_curves.empty()) {
+    p.drawText(area, Qt::AlignCenter,
+               m_scope == Scope::kAllVisible ? "no fitted stroke in view" : "draw a stroke to see its curvature");
     return;
   }
-  double s_max = m_after.s.back();
-  if (!m_before.s.empty()) s_max = std::max(s_max, m_before.s.back());
+  std::vector<const Series*> all{&m_before, &m_after};
+  for (const Series& c : m_curves) all.push_back(&c);
+  double s_max = 0.0;  // the longest curve's length: every curve starts at s = 0
+  for (const Series* ser : all)
+    if (!ser->s.empty()) s_max = std::max(s_max, ser->s.back());
+  s_max = std::max(s_max, 1e-300);
   double lo = INFINITY, hi = -INFINITY, smallest_radius = INFINITY;
-  for (const Series* ser : {&m_before, &m_after})
+  for (const Series* ser : all)
     for (double k : ser->kappa)
       if (const double v = value(k); std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
   if (!std::isfinite(lo)) lo = 0.0, hi = 1.0;
@@ -192,6 +251,8 @@ void CurvaturePlot::paintEvent(QPaintEvent*) {
     }
   };
   draw(m_before, QPen(kBeforeColor, 1.2));
+  for (std::size_t k = 0; k < m_curves.size(); ++k)  // (the selected one is drawn last, on top)
+    if (static_cast<int>(k) != m_highlighted) draw(m_curves[k], QPen(kOtherColors[k % std::size(kOtherColors)], 1.4));
   draw(m_after, QPen(kAfterColor, 2.0));
   p.restore();
   // the legend, in the margin above the data
@@ -203,6 +264,12 @@ void CurvaturePlot::paintEvent(QPaintEvent*) {
     p.drawText(QRectF(x + 18, legend.top(), legend.right() - x - 18, legend.height()), Qt::AlignVCenter | Qt::AlignLeft, text);
     return x + 24 + p.fontMetrics().horizontalAdvance(text);
   };
+  if (!m_curves.empty()) {
+    const double x = entry(legend.left(), kOtherColors[0], m_curves.size() == 1 ? QString("the visible stroke")
+                                                                      : QString("%1 visible strokes, each from its start").arg(m_curves.size()));
+    if (m_highlighted >= 0) entry(x, kAfterColor, "selected");
+    return;
+  }
   if (m_before.s.empty()) {
     entry(legend.left(), kAfterColor, "constructed curve");
     return;

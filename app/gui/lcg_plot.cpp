@@ -13,10 +13,20 @@ namespace la::gui {
 namespace {
 
 constexpr int kSamples = 80;
+constexpr double kTitleHeight = 18;
+constexpr double kLegendRowHeight = 15;
+constexpr double kTopMargin = kTitleHeight + 2 * kLegendRowHeight + 6;  // title, two legend rows
+const QColor kDataColor(150, 150, 150);
+const QColor kSegmentColor(21, 101, 192);
 
 }  // namespace
 
-LcgPlot::LcgPlot(QWidget* parent) : QWidget(parent) { setMinimumSize(240, 160); }
+LcgPlot::LcgPlot(QWidget* parent) : QWidget(parent) { setMinimumSize(240, 180); }
+
+QRectF LcgPlot::plotArea() const { return QRectF(52, kTopMargin, width() - 64, height() - kTopMargin - 36); }
+
+// (from the left edge: the dock is narrow and the rows hold numbers)
+QRectF LcgPlot::legendRect() const { return QRectF(6, kTitleHeight, width() - 12, 2 * kLegendRowHeight); }
 
 void LcgPlot::setSegment(const FitResult* fit, int piece) {
   m_data.clear();
@@ -41,14 +51,14 @@ void LcgPlot::setSegment(const FitResult* fit, int piece) {
 
 void LcgPlot::paintEvent(QPaintEvent*) {
   QPainter p(this);
-  const QRectF area(52, 22, width() - 64, height() - 58);
+  const QRectF area = plotArea();
   drawChartPage(p, *this, area, "log ρ", "log(ρ |ds/dρ|)");
   p.drawRect(area);
   if (m_segment.empty()) {
     p.drawText(area, Qt::AlignCenter, "click a segment to see its LCG");
     return;
   }
-  p.drawText(QRectF(0, 2, width(), 18), Qt::AlignCenter, m_title);
+  p.drawText(QRectF(0, 1, width(), kTitleHeight), Qt::AlignCenter, m_title);
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   for (const auto* set : {&m_data, &m_segment})
     for (const QPointF& q : *set) x0 = std::min(x0, q.x()), x1 = std::max(x1, q.x()), y0 = std::min(y0, q.y()), y1 = std::max(y1, q.y());
@@ -65,20 +75,38 @@ void LcgPlot::paintEvent(QPaintEvent*) {
     p.drawText(QRectF(map(x, y0).x() - 30, area.bottom() + 2, 60, 14), Qt::AlignCenter, QString::number(x, 'g', 3));
   for (double y : roundTicks(y0, y1))
     p.drawText(QRectF(area.left() - 50, map(x0, y).y() - 7, 46, 14), Qt::AlignRight | Qt::AlignVCenter, QString::number(y, 'g', 3));
+  p.save();
+  p.setClipRect(area);
   p.setPen(Qt::NoPen);
-  p.setBrush(QColor(150, 150, 150));
+  p.setBrush(kDataColor);
   for (const QPointF& q : m_data) p.drawEllipse(map(q.x(), q.y()), 2.2, 2.2);
   if (std::isfinite(m_fit_alpha)) {
     p.setPen(QPen(QColor(120, 120, 120), 1.0, Qt::DashLine));
     p.drawLine(map(x0, m_fit_intercept + m_fit_alpha * x0), map(x1, m_fit_intercept + m_fit_alpha * x1));
-    p.drawText(QPointF(area.left() + 6, area.top() + 14),
-               QString("stroke: slope %1, R² %2").arg(m_fit_alpha, 0, 'g', 3).arg(m_r2, 0, 'f', 3));
   }
   QPolygonF line;
   for (const QPointF& q : m_segment) line << map(q.x(), q.y());
-  p.setPen(QPen(QColor(21, 101, 192), 2.0));
+  p.setPen(QPen(kSegmentColor, 2.0));
   p.drawPolyline(line);
-  p.drawText(QPointF(area.left() + 6, area.top() + 28), QString("LA segment: alpha %1").arg(m_alpha, 0, 'g', 3));
+  p.restore();
+  // the legend, one row per series, in the margin above the data
+  const QRectF legend = legendRect();
+  const QRectF row1(legend.left(), legend.top(), legend.width(), kLegendRowHeight);
+  const QRectF row2 = row1.translated(0, kLegendRowHeight);
+  p.setPen(Qt::NoPen);
+  p.setBrush(kDataColor);
+  p.drawEllipse(QPointF(row1.left() + 7, row1.center().y()), 2.2, 2.2);
+  p.setPen(QPen(QColor(120, 120, 120), 1.0, Qt::DashLine));
+  p.drawLine(QPointF(row1.left() + 11, row1.center().y()), QPointF(row1.left() + 18, row1.center().y()));
+  p.setPen(Qt::black);
+  const QString stroke_text = std::isfinite(m_fit_alpha)
+                                  ? QString("stroke: slope %1, R² %2 (dashed)").arg(m_fit_alpha, 0, 'g', 3).arg(m_r2, 0, 'f', 3)
+                                  : QString("stroke (too few points for a line)");
+  p.drawText(row1.adjusted(22, 0, 0, 0), Qt::AlignVCenter | Qt::AlignLeft, stroke_text);
+  p.setPen(QPen(kSegmentColor, 2.0));
+  p.drawLine(QPointF(row2.left() + 2, row2.center().y()), QPointF(row2.left() + 18, row2.center().y()));
+  p.setPen(Qt::black);
+  p.drawText(row2.adjusted(22, 0, 0, 0), Qt::AlignVCenter | Qt::AlignLeft, QString("LA segment: alpha %1").arg(m_alpha, 0, 'g', 3));
 }
 
 }  // namespace la::gui

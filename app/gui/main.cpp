@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
   const QStringList args = QApplication::arguments();
   for (int i = 1; i < args.size(); ++i) {  // sketches open, point files import
     if (args[i].endsWith(".lafair.json") || args[i].endsWith(".sketch.json")) window.openFile(args[i]);
-    else window.importPoints(args[i]);
+    // (the sketch is empty and the view is fitted to it: no need to ask where they go)
+    else window.importPoints(args[i], la::gui::ImportPlacement::kOwnCoordinates);
   }
   window.show();
   window.offerRecovery();

@@ -36,9 +36,11 @@
 #include "app/gui/comb_panel.h"
 #include "app/gui/construction_panel.h"
 #include "app/gui/curvature_plot.h"
+#include "app/gui/import_placement_dialog.h"
 #include "app/gui/lcg_plot.h"
 #include "app/gui/oversketch.h"
 #include "app/gui/parameter_panel.h"
+#include "app/gui/point_import.h"
 #include "app/io/curve_export.h"
 #include "app/io/point_file.h"
 #include "core/atomic_file.h"
@@ -55,8 +57,28 @@ constexpr int kPreviewMinIntervalMs = 30;
 constexpr double kPreviewCostFactor = 4.0;
 constexpr int kPreviewMinPoints = 8;
 constexpr int kRecentFiles = 8;
+// "All visible strokes" follows a pan or zoom at most this often (a frame and a half):
+// it samples every visible curve, too much for every mouse move of a pan.
+constexpr int kPlotRefreshMs = 25;
 // Exported Bezier paths stay within this fraction of the fit tolerance of the LA curves.
 constexpr double kExportToleranceOfFit = 0.1;
+// How long the status bar says where an import went, before the fit's figures return.
+constexpr int kImportMessageMs = 15000;
+
+const char* settingName(ImportPlacement p) {
+  switch (p) {
+    case ImportPlacement::kFitToView: return "fit-to-view";
+    case ImportPlacement::kOwnCoordinates: return "own-coordinates";
+    case ImportPlacement::kAsk: break;
+  }
+  return "ask";
+}
+
+ImportPlacement placementFromSetting(const QString& name) {
+  if (name == "fit-to-view") return ImportPlacement::kFitToView;
+  if (name == "own-coordinates") return ImportPlacement::kOwnCoordinates;
+  return ImportPlacement::kAsk;
+}
 
 class AddStrokeCommand : public QUndoCommand {
  public:
@@ -77,6 +99,35 @@ class AddStrokeCommand : public QUndoCommand {
   MainWindow* m_window;
   Stroke m_stroke;
   std::size_t m_index = 0;
+};
+
+// An import: every stroke of a file as one step, added as drawn strokes are (provisional,
+// stage 7 in the background). Where they hold more samples together than one pen-up may
+// fit on the UI thread (Document::kOffThreadFitSamples), all are inserted unfitted and
+// fitted entirely in the background: a large file never holds the UI past a frame.
+class ImportStrokesCommand : public QUndoCommand {
+ public:
+  ImportStrokesCommand(MainWindow* w, const QString& text, std::vector<Stroke> strokes)
+      : QUndoCommand(text), m_window(w), m_strokes(std::move(strokes)) {}
+  void redo() override {
+    Document& d = m_window->document();
+    m_first = d.strokes().size();
+    std::size_t samples = 0;
+    for (const Stroke& s : m_strokes) samples += s.samples.size();
+    const bool unfitted = samples > Document::kOffThreadFitSamples;
+    for (std::size_t k = 0; k < m_strokes.size(); ++k) d.insertStroke(m_first + k, m_strokes[k], /*provisional=*/true, unfitted);
+    for (std::size_t k = 0; k < m_strokes.size(); ++k) m_window->fitInBackground(m_first + k);
+    m_window->documentChanged();
+  }
+  void undo() override {
+    for (std::size_t k = m_strokes.size(); k-- > 0;) m_window->document().removeStroke(m_first + k);
+    m_window->documentChanged();
+  }
+
+ private:
+  MainWindow* m_window;
+  std::vector<Stroke> m_strokes;
+  std::size_t m_first = 0;
 };
 
 // An oversketch: stroke `index` replaced by the spliced raw stroke, refitted like a drawn
@@ -254,6 +305,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   plot_dock->setObjectName("curvature-plot");
   plot_dock->setWidget(m_plot);
   addDockWidget(Qt::BottomDockWidgetArea, plot_dock);
+  m_plot_refresh = new QTimer(this);
+  m_plot_refresh->setSingleShot(true);
+  m_plot_refresh->setInterval(kPlotRefreshMs);
+  connect(m_plot_refresh, &QTimer::timeout, this, &MainWindow::refreshCurvaturePlot);
+  connect(m_plot, &CurvaturePlot::scopeChanged, this, &MainWindow::refreshCurvaturePlot);
 
   m_lcg = new LcgPlot;
   auto* lcg_dock = new QDockWidget("LCG of the selected segment (click it with V, or right-click)", this);
@@ -287,6 +343,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   m_status = new QLabel("draw with the pen or the mouse (B); V selects and moves, H or Space pans, the wheel zooms");
   statusBar()->addWidget(m_status, 1);
 
+  connect(m_canvas, &Canvas::viewChanged, this, [this] {
+    if (m_plot->scope() == CurvaturePlot::Scope::kAllVisible) m_plot_refresh->start();
+  });
   connect(m_canvas, &Canvas::strokeFinished, this, &MainWindow::strokeDrawn);
   connect(m_canvas, &Canvas::strokeProgress, this, &MainWindow::updatePreview);
   connect(m_canvas, &Canvas::segmentClicked, this, &MainWindow::selectSegment);
@@ -338,7 +397,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   // undoable edit on release.
   auto preview_edit = [this](int stroke, const std::function<std::optional<FitResult>(const FitResult&)>& edit) {
     const auto& s = m_document.strokes()[static_cast<std::size_t>(stroke)];
-    if (s.fit) m_canvas->setPreview(edit(*s.fit));
+    if (!s.fit) return;
+    m_canvas->setPreview(edit(*s.fit));
+    // the plot follows the handle: the edited curve's curvature, live
+    if (const auto& live = m_canvas->preview()) {
+      plotCurvature(&*live, stroke);
+      m_plot->setHighlight(stroke == m_selected_stroke ? m_selected_piece : -1);
+    }
   };
   connect(m_canvas, &Canvas::jointDragged, this, [=, this](int stroke, int joint, const QPointF& w) {
     preview_edit(stroke, [&](const FitResult& f) {
@@ -380,6 +445,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   buildToolBar();
   m_export_points = QSettings().value("export/points", false).toBool();
   m_export_comb = QSettings().value("export/comb", false).toBool();
+  m_import_placement = placementFromSetting(QSettings().value("import/placement", "ask").toString());
   buildMenus();
   // The document's units, in the status bar: exports state them (DXF $INSUNITS).
   auto* units = new QComboBox;
@@ -451,6 +517,7 @@ void MainWindow::updatePreview() {
   quick.polish = false;  // the preview keeps up with the pen; the pen-up fit adds stage 7
   try {
     m_canvas->setPreview(fitStroke(current, quick));
+    plotCurvature(&*m_canvas->preview(), -1);  // the plot follows the pen
   } catch (const StrokeError&) {
     m_canvas->setPreview(std::nullopt);  // too few points yet
   }
@@ -466,7 +533,7 @@ void MainWindow::selectSegment(int stroke, int piece) {
   m_selected_piece = piece;
   m_lcg->setSegment(fit, piece);
   m_canvas->setSelection(stroke, piece);
-  if (fit) m_plot->setFit(fit);  // the plot follows the selected stroke
+  if (fit) plotCurvature(fit, stroke);  // the plot follows the selected stroke
   m_plot->setHighlight(fit ? piece : -1);
   const std::string fixed = fit && piece >= 0 ? whyAlphaIsFixed(*fit, static_cast<std::size_t>(piece)) : "select a segment first (click it with V, or right-click it)";
   m_parameters->setSegmentAlpha(fixed.empty(), fixed.empty() ? fit->curve.pieces[piece].segment.alpha() : 0.0,
@@ -478,6 +545,50 @@ void MainWindow::selectSegment(int stroke, int piece) {
                           .arg(seg.kappaStart(), 0, 'g', 3).arg(seg.kappaEnd(), 0, 'g', 3)
                           .arg(toString(fit->pieces[piece].kind)));
   }
+}
+
+void MainWindow::plotCurvature(const FitResult* shown, int stroke) {
+  if (m_plot->scope() == CurvaturePlot::Scope::kSelectedStroke) {
+    m_plot->setFit(shown);
+    return;
+  }
+  const QPointF a = m_canvas->toWorld(QPointF(0, 0)), b = m_canvas->toWorld(QPointF(m_canvas->width(), m_canvas->height()));
+  const QRectF view = QRectF(a, b).normalized();
+  std::vector<const FitResult*> fits;
+  int highlighted = -1;
+  const auto& strokes = m_document.strokes();
+  for (std::size_t i = 0; i < strokes.size(); ++i) {
+    const bool this_one = static_cast<int>(i) == stroke;
+    const FitResult* fit = this_one ? shown : (strokes[i].fit ? &*strokes[i].fit : nullptr);
+    const std::optional<WorldBox> box = boundsOf({strokes[i].raw});
+    // (a straight stroke's box has no area: widened a little so it can meet the view)
+    if (!fit || !box || !view.intersects(QRectF(QPointF(box->lo.x(), box->lo.y()), QPointF(box->hi.x(), box->hi.y()))
+                                             .adjusted(-1e-9, -1e-9, 1e-9, 1e-9)))
+      continue;
+    if (this_one) highlighted = static_cast<int>(fits.size());
+    fits.push_back(fit);
+  }
+  if (stroke < 0 && shown) {  // the stroke being drawn
+    highlighted = static_cast<int>(fits.size());
+    fits.push_back(shown);
+  }
+  m_plot->setCurves(fits, highlighted);
+}
+
+void MainWindow::refreshCurvaturePlot() {
+  const auto& strokes = m_document.strokes();
+  if (m_selected_stroke >= 0 && m_selected_stroke < static_cast<int>(strokes.size()) && strokes[m_selected_stroke].fit) {
+    plotCurvature(&*strokes[m_selected_stroke].fit, m_selected_stroke);
+    m_plot->setHighlight(m_selected_piece);
+    return;
+  }
+  if (m_selected_construction >= 0) {
+    selectConstruction(m_selected_construction);  // (shows its curve)
+    return;
+  }
+  for (int i = static_cast<int>(strokes.size()) - 1; i >= 0; --i)
+    if (strokes[i].fit) return plotCurvature(&*strokes[i].fit, i);
+  plotCurvature(nullptr, -1);
 }
 
 void MainWindow::addConstruction(ConstructionKind kind) {
@@ -659,9 +770,10 @@ void MainWindow::documentChanged() {
   m_canvas->selection().set(m_document, selectedStrokes());  // (forgets strokes no longer there)
   m_canvas->update();
   const FitResult* last = nullptr;
-  for (const DocumentStroke& s : m_document.strokes())
-    if (s.fit) last = &*s.fit;
-  m_plot->setFit(last);
+  int last_index = -1;
+  for (std::size_t i = 0; i < m_document.strokes().size(); ++i)
+    if (m_document.strokes()[i].fit) last = &*m_document.strokes()[i].fit, last_index = static_cast<int>(i);
+  plotCurvature(last, last_index);
   selectSegment(-1, -1);
   selectConstruction(m_selected_construction);
   const bool fitting_huge = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
@@ -833,19 +945,60 @@ bool MainWindow::saveFile(const QString& path) {
   return true;
 }
 
-bool MainWindow::importPoints(const QString& path) {
-  std::vector<Stroke> strokes;
-  try {
-    strokes = readStrokes(path.toStdString());
-  } catch (const std::exception& e) {
-    showError(QString::fromStdString(e.what()));
+bool MainWindow::importPoints(const QString& path, std::optional<ImportPlacement> placement) {
+  if (m_importing) {
+    showError("an import is running: wait for it or cancel it first");
     return false;
   }
-  m_undo->beginMacro("import " + QFileInfo(path).fileName());
-  for (const Stroke& s : strokes) addStroke(s);
-  m_undo->endMacro();
-  m_canvas->fitView();
+  const QString name = QFileInfo(path).fileName();
+  ImportPlacement how = placement.value_or(m_import_placement);
+  if (how == ImportPlacement::kAsk && qEnvironmentVariableIsSet("LAFAIR_NO_DIALOGS")) {
+    how = ImportPlacement::kOwnCoordinates;  // as imports always were
+  } else if (how == ImportPlacement::kAsk) {
+    const QString last = QSettings().value("import/last_placement", "fit-to-view").toString();
+    ImportPlacementDialog ask(this, name, QString::fromStdString(m_document.units()), placementFromSetting(last));
+    if (ask.exec() != QDialog::Accepted) return false;
+    how = ask.choice();
+    QSettings().setValue("import/last_placement", settingName(how));
+    if (ask.remember()) setImportPlacement(how);
+  }
+  std::optional<WorldBox> view;
+  if (how == ImportPlacement::kFitToView) {
+    const QPointF a = m_canvas->toWorld(QPointF(0, 0)), b = m_canvas->toWorld(QPointF(m_canvas->width(), m_canvas->height()));
+    view = WorldBox{Vec2(std::min(a.x(), b.x()), std::min(a.y(), b.y())), Vec2(std::max(a.x(), b.x()), std::max(a.y(), b.y()))};
+  }
+  m_importing = true;
+  ReadPointsResult read = readPointsOffThread(this, path, view);
+  m_importing = false;
+  if (read.status == ReadPointsResult::Status::kCancelled) {
+    showMessage("import of " + name + " cancelled: the sketch is unchanged");
+    return false;
+  }
+  if (read.status != ReadPointsResult::Status::kRead) {
+    showError(QString::fromStdString(read.error));  // "file:line: what"; the sketch is untouched
+    return false;
+  }
+  const std::size_t count = read.strokes.size();
+  m_undo->push(new ImportStrokesCommand(this, "import " + name, std::move(read.strokes)));
+  QString where;
+  if (read.placed) {
+    where = QString("imported at scale %1 (fitted to the view)").arg(read.placed->scale, 0, 'g', 4);
+  } else {
+    m_canvas->fitView();
+    const std::string& units = m_document.units();
+    where = QString("imported at their own coordinates (%1)").arg(units.empty() ? QString("unitless") : QString::fromStdString(units));
+  }
+  statusBar()->showMessage(QString("%1: %2 stroke%3, %4").arg(name).arg(count).arg(count == 1 ? "" : "s").arg(where),
+                           kImportMessageMs);
   return true;
+}
+
+void MainWindow::setImportPlacement(ImportPlacement placement) {
+  m_import_placement = placement;
+  QSettings().setValue("import/placement", settingName(placement));
+  if (m_placement_actions)
+    for (QAction* a : m_placement_actions->actions())
+      if (a->data().toInt() == static_cast<int>(placement)) a->setChecked(true);
 }
 
 void MainWindow::setExportExtras(bool points, bool comb) {
@@ -980,6 +1133,22 @@ void MainWindow::buildMenus() {
     const QString p = QFileDialog::getOpenFileName(this, "Import points", {}, "Points (*.csv *.txt *.dat *.json *.svg)");
     if (!p.isEmpty()) importPoints(p);
   });
+  // Where imported points go (import_placement.h): asked, or the remembered answer.
+  QMenu* placement = file->addMenu("Import p&lacement");
+  placement->setObjectName("import-placement-menu");
+  m_placement_actions = new QActionGroup(this);
+  m_placement_actions->setExclusive(true);
+  for (const auto& [what, text] : {std::pair{ImportPlacement::kAsk, "&Ask on each import"},
+                                   std::pair{ImportPlacement::kFitToView, "&Fit to the view"},
+                                   std::pair{ImportPlacement::kOwnCoordinates, "At their &own coordinates"}}) {
+    QAction* a = placement->addAction(text);
+    a->setObjectName(QString("import-") + settingName(what));
+    a->setCheckable(true);
+    a->setData(static_cast<int>(what));
+    a->setChecked(what == m_import_placement);
+    m_placement_actions->addAction(a);
+    connect(a, &QAction::triggered, this, [this, what] { setImportPlacement(what); });
+  }
   file->addAction("&Export curves…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export curves", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
     if (!p.isEmpty()) exportFile(p);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/gui/document.h"
+#include "app/gui/import_placement.h"
 #include "app/gui/tools.h"
 
 class QActionGroup;
@@ -49,7 +50,16 @@ class MainWindow : public QMainWindow {
   // message box and returned as false, never thrown.
   bool openFile(const QString& path);
   bool saveFile(const QString& path);
-  bool importPoints(const QString& path);
+  /// Imports a point file as one undo step: read off the UI thread (point_import.h; a
+  /// progress dialog with Cancel for a slow read; cancelled or failed, the sketch is
+  /// unchanged), placed as `placement` says, or as File > Import placement says (asking
+  /// in a dialog where it says so; under LAFAIR_NO_DIALOGS "ask" keeps own coordinates).
+  /// The status bar says where the points went ("imported at scale S").
+  bool importPoints(const QString& path, std::optional<ImportPlacement> placement = std::nullopt);
+  /// File > Import placement, remembered in QSettings ("import/placement").
+  ImportPlacement importPlacement() const { return m_import_placement; }
+  void setImportPlacement(ImportPlacement placement);
+  bool importing() const { return m_importing; }  // a read is running (its event loop is)
   /// Format from the extension: svg, dxf, json, csv. All curves, or only the selected stroke's.
   bool exportFile(const QString& path, bool selected_only = false);
   /// What an SVG export adds to the curves (remembered in QSettings; off by default).
@@ -132,17 +142,25 @@ class MainWindow : public QMainWindow {
   void showError(const QString& what);
   void autosave();
   void updatePreview();  // live fit of the stroke being drawn, as often as time allows
+  // The curvature plot shows `shown` as stroke `stroke`'s curve (-1: a stroke being drawn):
+  // alone, or among every visible stroke (the plot's scope), highlighted.
+  void plotCurvature(const FitResult* shown, int stroke);
+  void refreshCurvaturePlot();  // after a change of scope or view: what the selection shows
   void rememberRecent(const QString& path);
   void refreshRecentMenu();
 
   Document m_document;
   Canvas* m_canvas = nullptr;
   QAction* m_oversketch = nullptr;
+  ImportPlacement m_import_placement = ImportPlacement::kAsk;
+  QActionGroup* m_placement_actions = nullptr;
+  bool m_importing = false;
   bool m_export_points = false, m_export_comb = false;
   QSpinBox* m_oversketch_reach_box = nullptr;
   double m_oversketch_reach = 8.0;  // pixels (kDefaultOversketchReachPixels)
   CurvaturePlot* m_plot = nullptr;
   LcgPlot* m_lcg = nullptr;
+  QTimer* m_plot_refresh = nullptr;  // coalesces the view changes of a pan or zoom
   QMenu* m_recent = nullptr;
   int m_selected_stroke = -1, m_selected_piece = -1;
   double m_preview_ms = 0.0;   // time of the last live fit
