@@ -67,7 +67,12 @@ void measureLeftOut(FitResult& r, const Stroke& stroke) {
 // `bound_radius`; the time budget counts from `start`.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_radius, Clock::time_point start) {
   FitResult r;
-  r.cleaned = cleanStroke(stroke, options.cleanup);
+  // (the tolerance asked for, on the raw points' diagonal: it sets a hook's worth)
+  std::vector<Vec2> finite;
+  for (const StrokeSample& sample : stroke.samples)
+    if (allFinite(sample.p)) finite.push_back(sample.p);
+  r.cleaned = cleanStroke(stroke, options.cleanup,
+                          options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * boundingBoxDiagonal(finite));
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;

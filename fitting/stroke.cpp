@@ -44,15 +44,16 @@ namespace {
 constexpr double kDuplicateTolerance = 1e-9;
 /// Points within this fraction of the diagonal of their best line are collinear.
 constexpr double kCollinearTolerance = 1e-9;
-/// The outlier test needs a median step it can trust: at least this many points.
-constexpr std::size_t kMinPointsForOutlierTest = 6;
-/// The outlier test looks at this many first steps and drops everything before the last
-/// jump among them. In the MMG data the jump is usually the first step, but in 9 of the
-/// 34 strokes the pen-down point is followed by a short slip back (3-8 px) and then the
-/// jump to where the drawing starts (H, I, N, X, arrowhead, asterisk, exclamation point).
-constexpr std::size_t kMaxOutlierPoints = 2;
 /// Hook trimming keeps at least this fraction of the drawn length (the brief: ~70%).
 constexpr double kMinKeptFraction = 0.7;
+/// A hook's worth: an end cut spans at most this many of the stroke's median steps or
+/// this many tolerances, whichever is longer (a slip takes 1-5 samples, fast ones a few
+/// median steps each; a slip within a few tolerances of the curve is all it could hide).
+constexpr double kHookReachSteps = 6.0;
+constexpr double kHookReachTolerances = 4.0;
+/// The tolerance a hook's worth is tied to when the caller gives none: FitOptions'
+/// default, 0.5% of the diagonal.
+constexpr double kDefaultToleranceFraction = 0.005;
 /// The overlap of a closed stroke is searched in this last fraction of its length only:
 /// longer overlaps are not overshoots but strokes that pass their start and go on (a
 /// "9" drawn from the crossing), and the first points are always near the start.
@@ -185,6 +186,8 @@ struct Scales {
   /// The corner window: corner_window of the length, but at least kWindowNoise noise
   /// levels, so that a window's chord direction is good to a few degrees.
   double window = 0.0;
+  /// A hook's worth: the longest an end cut may be (kHookReachSteps, kHookReachTolerances).
+  double hook_reach = 0.0;
 };
 
 /// The spacing of the grid the coordinates were rounded to (pixels, or the Omniglot
@@ -212,9 +215,10 @@ double cornerWindow(const std::vector<Vec2>& p, bool closed, double noise, const
   return std::max(options.corner_window * length, kWindowNoise * noise);
 }
 
-Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptions& options) {
+Scales measureScales(const std::vector<Vec2>& p, bool closed, const CleanupOptions& options, double tolerance) {
   Scales scales;
   scales.median_step = medianStep(p);
+  scales.hook_reach = std::max(kHookReachSteps * scales.median_step, kHookReachTolerances * tolerance);
   std::vector<double> deviations;
   for (std::size_t i = 1; i + 1 < p.size(); ++i) deviations.push_back(lineDistance(p[i], p[i - 1], p[i + 1]));
   if (!deviations.empty()) {
@@ -426,7 +430,7 @@ struct HookLimits {
 
 /// Number of leading points of p that form a hook (0 if none). A candidate junction k
 /// is accepted when
-///  - the piece P_0..P_k is short (hook_max_fraction of the drawn length, at most
+///  - the piece P_0..P_k is short (a hook's worth, Scales::hook_reach, at most
 ///    hook_max_samples points, and within the limits), nearly straight, and longer than
 ///    kHookMinNoise noise levels;
 ///  - its chord P_0 P_k turns by more than hook_min_angle against the chord from P_k
@@ -434,11 +438,11 @@ struct HookLimits {
 ///  - the turn at P_k is sharp (the corner test, with the hook side of the window cut
 ///    short at P_0).
 /// Of several candidates the one with the largest turn is the junction.
-std::size_t startHook(const std::vector<Vec2>& p, double drawn_length, const Scales& scales,
-                      const HookLimits& limits, const CleanupOptions& options) {
+std::size_t startHook(const std::vector<Vec2>& p, const Scales& scales, const HookLimits& limits,
+                      const CleanupOptions& options) {
   const Polyline line(p, false);
   const std::vector<double>& s = line.pointArcLengths();
-  const double max_length = std::min(options.hook_max_fraction * drawn_length, limits.max_length);
+  const double max_length = std::min(scales.hook_reach, limits.max_length);
   const double w = scales.window;
   std::size_t best = 0;
   double best_turn = options.hook_min_angle;
@@ -546,16 +550,18 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     std::size_t spike = 0;
     double spike_turn = options.hook_min_angle;
     for (std::size_t k = 1; k <= options.hook_max_samples && first + k + 3 <= m &&
-                            s[first + k] - s[first] <= options.hook_max_fraction * length;
+                            s[first + k] - s[first] <= scales.hook_reach;
          ++k) {
       const std::size_t j = first + k;
       const Vec2 chord = p[j] - p[first];
-      if (chord.norm() < kHookMinNoise * scales.noise) continue;
+      const bool short_chord = chord.norm() < kHookMinNoise * scales.noise;
       double deviation = 0.0;
       for (std::size_t i = first + 1; i < j; ++i) deviation = std::max(deviation, lineDistance(p[i], p[first], p[j]));
       if (deviation > kHookStraightness * chord.norm()) continue;
       const auto out = departure(j);
       if (!out) continue;
+      // (within the noise only a back step counts, as at an open stroke's start)
+      if (short_chord && unsignedAngle(chord, *out) <= kBackStepTurn) continue;
       const double turn = std::min(unsignedAngle(p[first] - p[m], chord), unsignedAngle(chord, *out));
       if (turn > spike_turn) {
         spike = k;
@@ -645,7 +651,7 @@ bool collinear(const std::vector<Vec2>& p) {
 
 }  // namespace
 
-CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
+CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double tolerance) {
   CleanStroke result;
   const std::size_t samples = raw.samples.size();
 
@@ -700,17 +706,8 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   // From here on no step removes points if that would leave them collinear: a stroke
   // that can be fitted stays so.
 
-  // 2. Pen-down outlier: everything before the last jump among the first steps.
-  if (!options.assume_closed && options.outlier_step_factor > 0.0 && pts.size() >= kMinPointsForOutlierTest) {
-    const double jump = options.outlier_step_factor * medianStep(pts.p);
-    std::size_t dropped = 0;
-    for (std::size_t j = 0; j < kMaxOutlierPoints; ++j) {
-      if ((pts.p[j + 1] - pts.p[j]).norm() > jump) dropped = j + 1;
-    }
-    if (dropped > 0 && collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(dropped), pts.p.end()))) dropped = 0;
-    pts.dropFront(dropped, LeftOutReason::kPenDownOutlier);
-    result.trimmed_start += dropped;
-  }
+  // 2. (A long first or last step is a segment of the stroke, drawn or not: nothing is
+  // dropped for its length alone. Hooks, which turn sharply, are step 4.)
 
   // 3. Closed?
   auto close = [&](const Seam& seam) {
@@ -719,7 +716,8 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
     pts.keepFront(seam.end, LeftOutReason::kOverlap);
     pts.dropFront(seam.first, LeftOutReason::kOverlap);
   };
-  Scales scales = measureScales(pts.p, false, options);
+  const double hook_tolerance = tolerance > 0.0 ? tolerance : kDefaultToleranceFraction * boundingBoxDiagonal(pts.p);
+  Scales scales = measureScales(pts.p, false, options, hook_tolerance);
   const std::size_t measured = pts.size();  // (points are only ever cut off: the same count, the same points)
   if (options.assume_closed || options.detect_closed) {
     if (const auto seam = findSeam(pts.p, scales, options)) close(*seam);
@@ -730,7 +728,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
   if (!result.closed && pts.size() > 3) {
     const double drawn_length = arcLengths(pts.p).back();
     HookLimits limits{(1.0 - kMinKeptFraction) * drawn_length, pts.size() - 3};
-    std::size_t start = startHook(pts.p, drawn_length, scales, limits, options);
+    std::size_t start = startHook(pts.p, scales, limits, options);
     if (start > 0 && collinear(std::vector<Vec2>(pts.p.begin() + static_cast<std::ptrdiff_t>(start), pts.p.end()))) start = 0;
     if (start > 0) {
       limits.max_length -= arcLengths(pts.p)[start];
@@ -739,7 +737,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
       result.trimmed_start += start;
     }
     const std::vector<Vec2> reversed(pts.p.rbegin(), pts.p.rend());
-    std::size_t end = startHook(reversed, drawn_length, scales, limits, options);
+    std::size_t end = startHook(reversed, scales, limits, options);
     if (end > 0 && collinear(std::vector<Vec2>(pts.p.begin(), pts.p.end() - static_cast<std::ptrdiff_t>(end)))) end = 0;
     if (end > 0) {
       pts.keepFront(pts.size() - end, LeftOutReason::kEndHook);
@@ -762,7 +760,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options) {
 
   // 6. Corners; a closed stroke starts at its corner nearest the original start.
   if (options.detect_corners) {
-    if (pts.size() < measured) scales = measureScales(pts.p, result.closed, options);
+    if (pts.size() < measured) scales = measureScales(pts.p, result.closed, options, hook_tolerance);
     else scales.window = cornerWindow(pts.p, result.closed, scales.noise, options);
     result.corners = findCorners(pts.p, result.closed, scales.window, options, raw.profile);
   }
@@ -785,7 +783,6 @@ const char* toString(LeftOutReason reason) {
   switch (reason) {
     case LeftOutReason::kNonFinite: return "not a finite number";
     case LeftOutReason::kDuplicate: return "duplicate";
-    case LeftOutReason::kPenDownOutlier: return "pen-down outlier";
     case LeftOutReason::kStartHook: return "pen-down hook";
     case LeftOutReason::kEndHook: return "pen-up hook";
     case LeftOutReason::kOverlap: return "closing overlap";

@@ -6,11 +6,9 @@
 // The steps, in order (fitting/stroke.cpp explains each one and its constants):
 //  1. drop non-finite samples, then consecutive duplicates (distance <= 1e-9 of the
 //     bounding-box diagonal; the first of a run is kept);
-//  2. pen-down outlier: if one of the first two steps is longer than
-//     outlier_step_factor times the median step, the points before the (last such) jump
-//     are dropped (not with assume_closed). Such a jump is not drawn geometry (MMG stylus
-//     data: a first point 12-33 px away when the steps are 3-5 px, sometimes with a short
-//     slip before the jump);
+//  2. nothing else is dropped at the ends for its length alone: a long first or last
+//     step is a segment of the stroke (a digitizer's jump to where the drawing starts
+//     is drawn as such);
 //  3. closed? (detect_closed): the end comes back within close_fraction * diagonal of
 //     the start; or the last quarter of the stroke passes within that distance of the
 //     start, or crosses the start's normal line within twice that distance (a circle
@@ -20,12 +18,12 @@
 //     moved within the doubly drawn part to where the closing step turns least.
 //     assume_closed skips the test (glyph contours, SVG paths with Z): the stroke is
 //     closed whatever its gap;
-//  4. hooks (open strokes only): a short straight end piece (<= hook_max_fraction of the
-//     length, <= hook_max_samples samples, longer than the sampling noise) that meets the
-//     rest at a sharp turn of more than hook_min_angle is cut. Directions are chords over
-//     an arc-length window, so 1-px quantization does not trigger it, and a smooth end
-//     curl is not a hook. 70% of the length (not counting an outlier jump) and 3 points
-//     always remain. If a hook was cut, step 3 is tried again;
+//  4. hooks (open strokes only): a short straight end piece (a hook's worth: at most 6
+//     median steps or 4 tolerances long, whichever is longer, and <= hook_max_samples
+//     samples; longer than the sampling noise) that meets the rest at a sharp turn of
+//     more than hook_min_angle is cut. Directions are chords over an arc-length window,
+//     so 1-px quantization does not trigger it, and a smooth end curl is not a hook. 70%
+//     of the length and 3 points always remain. If a hook was cut, step 3 is tried again;
 //  5. throws StrokeError if fewer than 3 distinct points remain; points all on one line
 //     are a straight stroke, returned after step 1 (no trimming step removes points if
 //     that would leave the rest collinear);
@@ -67,22 +65,12 @@ struct StrokeError : std::invalid_argument {
 };
 
 struct CleanupOptions {
-  /// Pen-down outlier: one of the first two steps longer than this many median steps is a
-  /// jump, not drawing; the points before it go (0 or less: off). Pen-down first steps
-  /// are short: in the $1 stylus data they are 0.3-1.3 median steps, the MMG jumps are
-  /// 3-11 median steps. Note: most MMG jumps (21 of 26) run along the stroke's own
-  /// direction, in one 16-ms clock tick with 2-3 more points whose steps shrink (15, 12,
-  /// 9 px): the dropped point may be a hover position the digitizer started from, or a
-  /// real pen-down point followed by lost samples (the top of the I's bar). Set this to
-  /// 0 to keep such points.
-  double outlier_step_factor = 3.0;
-  /// Hooks: an end piece no longer than this fraction of the stroke length and made of
-  /// at most hook_max_samples samples, that turns by more than hook_min_angle against the
-  /// rest, is cut off. A hook is the pen slipping as it lands or lifts, which takes a few
-  /// samples at 60-120 Hz (1-5 in the $1 and MMG stylus data); a deliberate short leg
-  /// takes longer (10-22 samples in the Omniglot and MMG star strokes). Raise
-  /// hook_max_samples for devices that sample much faster.
-  double hook_max_fraction = 0.12;
+  /// Hooks: an end piece no longer than a hook's worth (6 median steps or 4 tolerances,
+  /// whichever is longer) and made of at most hook_max_samples samples, that turns by
+  /// more than hook_min_angle against the rest, is cut off. A hook is the pen slipping
+  /// as it lands or lifts, which takes a few samples at 60-120 Hz (1-5 in the $1 and MMG
+  /// stylus data); a deliberate short leg takes longer (10-22 samples in the Omniglot
+  /// and MMG star strokes). Raise hook_max_samples for devices that sample much faster.
   double hook_min_angle = 1.2;  // radians (~70 degrees)
   std::size_t hook_max_samples = 6;
   /// Corners: a point where the stroke turns by more than corner_min_angle within a
@@ -108,7 +96,7 @@ struct CleanupOptions {
 };
 
 /// Why the clean-up left a raw sample out of the points to fit.
-enum class LeftOutReason { kNonFinite, kDuplicate, kPenDownOutlier, kStartHook, kEndHook, kOverlap };
+enum class LeftOutReason { kNonFinite, kDuplicate, kStartHook, kEndHook, kOverlap };
 const char* toString(LeftOutReason reason);
 
 struct LeftOutPoint {
@@ -128,7 +116,7 @@ struct CleanStroke {
   /// that line, or lines where the stroke turns back along it; no other clean-up step
   /// ran (no closure, hooks or corners).
   bool straight = false;
-  std::size_t trimmed_start = 0;     // raw samples removed as a pen-down hook / outlier
+  std::size_t trimmed_start = 0;     // raw samples removed as a pen-down hook
   std::size_t trimmed_end = 0;       // raw samples removed as a pen-up hook
   std::size_t removed_overlap = 0;   // raw samples cut where a closed stroke overlaps its start
   std::size_t removed_invalid = 0;   // NaN / infinite samples dropped
@@ -147,6 +135,8 @@ struct CleanStroke {
 
 /// Throws StrokeError if fewer than 3 distinct finite points remain (nothing to fair);
 /// the message gives the counts. Points all on one line come back `straight`.
-CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options = {});
+/// `tolerance` is the fit's (absolute), which a hook's worth is tied to; 0: 0.5% of the
+/// points' bounding-box diagonal, FitOptions' default.
+CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options = {}, double tolerance = 0.0);
 
 }  // namespace la

@@ -12,7 +12,9 @@
 //  - max_dev/tol: the largest distance from a point over the tolerance the fit used
 //    (FitResult::tolerance: raised to the noise floor where the fit raised it);
 // and the tightest radius over the tolerance (min_radius / tolerance: its minimum over
-// the strokes, and the strokes that bend tighter than the tolerance), and with a cap on
+// the strokes, and the strokes that bend tighter than the tolerance), the share of the
+// drawn length the clean-up left out (CleanStroke::left_out_fraction, in %: p99, max, and
+// the strokes over the 5% that draws a warning), and with a cap on
 // extrema the smooth parts that have more (QualityFigures::extrema_per_part), of all
 // parts. Strokes fitStroke rejects as degenerate (StrokeError) are counted, not measured.
 // Below the table, per data set, the slowest stroke and the one with the tightest bend.
@@ -65,7 +67,11 @@ struct StrokeFigures {
   double radius = 0.0;     // min_radius / tolerance
   int parts = 0;
   int parts_over_cap = 0;
+  double left_out = 0.0;  // CleanStroke::left_out_fraction: drawn length the curve leaves out
 };
+
+// A curve that leaves out more of the drawn length than this says so (fitting/pipeline.cpp).
+constexpr double kLeftOutWarning = 0.05;
 
 struct SetFigures {
   bool ran = false;
@@ -77,7 +83,8 @@ std::vector<SetFigures> g_results(std::size(kDataSets));
 StrokeFigures figuresOf(std::string where, const FitResult& r, int cap) {
   const QualityFigures& q = r.quality;
   StrokeFigures f{std::move(where), r.timings.total_ms, q.segments, q.extrema_dense, q.max_dev / r.tolerance,
-                  q.min_radius / r.tolerance, static_cast<int>(q.extrema_per_part.size())};
+                  q.min_radius / r.tolerance, static_cast<int>(q.extrema_per_part.size()), 0,
+                  r.cleaned.left_out_fraction};
   if (cap >= 0)
     f.parts_over_cap = static_cast<int>(std::count_if(q.extrema_per_part.begin(), q.extrema_per_part.end(),
                                                       [cap](int extrema) { return extrema > cap; }));
@@ -146,10 +153,11 @@ void printRow(const char* name, const SetFigures& set, int cap) {
     return;
   }
   double tightest = INFINITY;
-  int tight = 0, parts = 0, over = 0;
+  int tight = 0, parts = 0, over = 0, left_out = 0;
   for (const StrokeFigures& s : f) {
     tightest = std::min(tightest, s.radius);
     if (s.radius < 1.0) ++tight;
+    if (s.left_out > kLeftOutWarning) ++left_out;
     parts += s.parts, over += s.parts_over_cap;
   }
   std::printf(" |%s |%s |%s |%s | %8.3g %5d %5.1f%%", distribution(f, [](auto& s) { return s.ms; }, "%7.2f").c_str(),
@@ -157,6 +165,9 @@ void printRow(const char* name, const SetFigures& set, int cap) {
               distribution(f, [](auto& s) { return s.extrema_dense; }, "%4.0f").c_str(),
               distribution(f, [](auto& s) { return s.deviation; }, "%6.3f").c_str(), tightest, tight,
               100.0 * tight / f.size());
+  std::vector<double> left;
+  for (const StrokeFigures& s : f) left.push_back(100.0 * s.left_out);
+  std::printf(" | %5.1f %5.1f %4d", percentile(left, 0.99), percentile(left, 1.0), left_out);
   if (cap >= 0) std::printf(" | %5d of %5d", over, parts);
   std::printf("\n");
 }
@@ -167,11 +178,11 @@ void printTable() {
   std::printf("\nShared data %s; options: %s, max_extrema %d, time budget %g ms\n",
               g_settings.data.lexically_normal().string().c_str(), o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)",
               cap, o.time_budget_ms);
-  std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s%s\n", "", "", "", "", "time ms", "segments",
-              "extrema_dense", "max_dev/tol", "min_radius/tol", cap >= 0 ? " | parts over the cap" : "");
-  std::printf("%-12s %5s %7s %4s |%7s%7s%7s%7s |%4s%4s%4s%4s |%4s%4s%4s%4s |%6s%6s%6s%6s | %8s %5s %6s\n", "data set",
-              "files", "strokes", "rej", "med", "p90", "p99", "max", "med", "p90", "p99", "max", "med", "p90", "p99", "max",
-              "med", "p90", "p99", "max", "min", "< 1", "%");
+  std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s | %-16s%s\n", "", "", "", "", "time ms", "segments",
+              "extrema_dense", "max_dev/tol", "min_radius/tol", "left out %", cap >= 0 ? " | parts over the cap" : "");
+  std::printf("%-12s %5s %7s %4s |%7s%7s%7s%7s |%4s%4s%4s%4s |%4s%4s%4s%4s |%6s%6s%6s%6s | %8s %5s %6s | %5s %5s %4s\n",
+              "data set", "files", "strokes", "rej", "med", "p90", "p99", "max", "med", "p90", "p99", "max", "med", "p90",
+              "p99", "max", "med", "p90", "p99", "max", "min", "< 1", "%", "p99", "max", ">5%");
   SetFigures all;
   for (std::size_t i = 0; i < g_results.size(); ++i) {
     const SetFigures& set = g_results[i];
