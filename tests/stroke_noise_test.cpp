@@ -1,0 +1,70 @@
+// fitting/stroke_noise.h: the noise of a stroke's points against known noise. Gaussian
+// jitter of a known sigma on a smooth curve is recovered (the fourth differences cancel
+// the curve's bending); a clean curve has next to none; points on a pixel grid have at
+// least the quantization; and a zigzag drawn at the sampling scale (every sample a
+// vertex, amplitude 10) at 1-unit noise is read as 1-unit noise, not as noise of its
+// own amplitude, so the tolerance's floor does not swallow it.
+
+#include "fitting/stroke_noise.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace la {
+namespace {
+
+// A circle of radius 200 sampled every 2 units over 1.5 radians, with Gaussian noise
+// `sigma` on each coordinate (std::mt19937, seed 7).
+std::vector<Vec2> noisyArc(double sigma) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> jitter(0.0, sigma);
+  std::vector<Vec2> p;
+  for (int i = 0; i <= 150; ++i) {
+    const double a = 0.01 * i;
+    p.emplace_back(200.0 * std::cos(a) + (sigma > 0 ? jitter(rng) : 0.0), 200.0 * std::sin(a) + (sigma > 0 ? jitter(rng) : 0.0));
+  }
+  return p;
+}
+
+TEST(StrokeNoise, GaussianJitterOnAnArcIsRecovered) {
+  for (double sigma : {0.2, 1.0, 3.0}) {
+    const Noise n = noiseOf(noisyArc(sigma));
+    EXPECT_NEAR(n.sigma, sigma, 0.25 * sigma) << "sigma " << sigma;
+    EXPECT_NEAR(n.floor, 4.0 * n.sigma, 1e-12);
+    EXPECT_FALSE(n.on_grid);
+  }
+}
+
+TEST(StrokeNoise, ACleanCurveHasNextToNone) {
+  const Noise n = noiseOf(noisyArc(0.0));
+  EXPECT_LT(n.sigma, 1e-6);
+}
+
+TEST(StrokeNoise, PointsOnAPixelGridHaveTheQuantization) {
+  std::vector<Vec2> p = noisyArc(0.0);
+  for (Vec2& q : p) q = Vec2(std::round(q.x()), std::round(q.y()));
+  const Noise n = noiseOf(p);
+  EXPECT_TRUE(n.on_grid);
+  EXPECT_GE(n.floor, 0.75);
+  EXPECT_GE(n.sigma, std::sqrt(1.0 / 12.0));
+}
+
+// Every sample a vertex: x steps by 8, y alternates +-10, with Gaussian noise of 1 on
+// each coordinate. The fourth differences are all about 16 * 10 = 160, alternating in
+// sign: read as noise they gave sigma ~ 28 and a floor above the zigzag's own size.
+TEST(StrokeNoise, AZigzagAtTheSamplingScaleIsNotNoise) {
+  std::mt19937 rng(3);
+  std::normal_distribution<double> jitter(0.0, 1.0);
+  std::vector<Vec2> p;
+  for (int i = 0; i <= 40; ++i) p.emplace_back(8.0 * i + jitter(rng), (i % 2 ? 10.0 : -10.0) + jitter(rng));
+  const Noise n = noiseOf(p);
+  EXPECT_GT(n.sigma, 0.5);
+  EXPECT_LT(n.sigma, 2.0);
+  EXPECT_LT(n.floor, 10.0);  // under the zigzag's amplitude
+}
+
+}  // namespace
+}  // namespace la
