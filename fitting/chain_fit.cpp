@@ -185,11 +185,12 @@ T unitTurning(const T& alpha, const T& y0, const T& y1, ZeroEnd zero) {
 // distance to a (virtual) zero of v, whose derivatives blow up.
 std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
   const int widths = static_cast<int>(std::ceil(1.0 / rule.width));
-  if (law.zero == ZeroEnd::kBoth) {  // a line: positions are exact on any panels
-    std::vector<double> uniform;
-    for (int k = 0; k <= widths; ++k) uniform.push_back(static_cast<double>(k) / widths);
-    return uniform;
-  }
+  const auto uniform = [&] {
+    std::vector<double> grid;
+    for (int k = 0; k <= widths; ++k) grid.push_back(static_cast<double>(k) / widths);
+    return grid;
+  };
+  if (law.zero == ZeroEnd::kBoth) return uniform();  // a line: positions are exact on any panels
   double v0 = 1.0, v1 = 1.0, turning;
   const double e = 1.0 - 1.0 / law.alpha;
   if (law.zero == ZeroEnd::kNone) {
@@ -199,9 +200,16 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
     (law.zero == ZeroEnd::kStart ? v0 : v1) = 0.0;
     turning = std::exp(law.zero == ZeroEnd::kEnd ? law.y0 : law.y1) * law.length / e;
   }
+  // A law doubles cannot evaluate: a wild step's NaN unknown, or 1 + r rounding to 0
+  // where alpha (y0 - y1) < -37 (the law's turning comes out NaN though the segment
+  // exists), or v1 overflowing. Its positions come out NaN on any panels and buildModel
+  // refuses it like an overflow; the uniform panels only keep the count an int (a NaN
+  // cast to int here was undefined behaviour: the fit fuzzer's first finding).
+  if (!std::isfinite(turning) || !std::isfinite(e) || !std::isfinite(v1)) return uniform();
   std::vector<double> grid;
-  // Equal turning: uniform for the bound, graded as turning ~ u^e from a zero start.
-  const int panels = std::clamp(static_cast<int>(std::ceil(turning / rule.turning)), 1, kMaxPanels);
+  // Equal turning: uniform for the bound, graded as turning ~ u^e from a zero start
+  // (clamped as a double: beyond int range the cast would be undefined too).
+  const int panels = static_cast<int>(std::clamp(std::ceil(turning / rule.turning), 1.0, static_cast<double>(kMaxPanels)));
   for (int k = 0; k <= panels; ++k) {
     const double f = static_cast<double>(k) / panels;
     grid.push_back(law.zero == ZeroEnd::kNone    ? f

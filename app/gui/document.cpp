@@ -7,24 +7,13 @@
 #include "app/gui/translate.h"
 #include "app/io/fit_json.h"
 #include "app/io/fit_options_json.h"
+#include "app/io/sketch_file.h"
 #include "core/atomic_file.h"
 #include "fitting/user_edits.h"
 #include "nlohmann/json.hpp"
 
 namespace la::gui {
 namespace {
-
-nlohmann::json pointsToJson(const std::map<int, Vec2>& points) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const auto& [index, q] : points) j[std::to_string(index)] = {q.x(), q.y()};
-  return j;
-}
-
-std::map<int, Vec2> pointsFromJson(const nlohmann::json& j) {
-  std::map<int, Vec2> points;
-  for (const auto& [key, value] : j.items()) points[std::stoi(key)] = Vec2(value.at(0).get<double>(), value.at(1).get<double>());
-  return points;
-}
 
 // Stroke ids are unique across documents: a background fit of a sketch that was
 // replaced (opened over) must not find a stroke of the new one.
@@ -196,86 +185,30 @@ void Document::removeConstruction(std::size_t index) {
 }
 
 void Document::save(const QString& path) const {
-  nlohmann::json strokes = nlohmann::json::array(), curves = nlohmann::json::array();
+  Sketch sketch;
+  sketch.options = options_;
+  sketch.units = units_;
   for (const DocumentStroke& s : strokes_) {
-    nlohmann::json pts = nlohmann::json::array(), t = nlohmann::json::array(), pressure = nlohmann::json::array(),
-                   tilt = nlohmann::json::array();
-    auto value = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
-    for (const StrokeSample& p : s.raw.samples) {
-      pts.push_back({p.p.x(), p.p.y()});
-      t.push_back(value(p.t));
-      pressure.push_back(value(p.pressure));
-      tilt.push_back({value(p.tilt_x), value(p.tilt_y)});
-    }
-    nlohmann::json overrides = nlohmann::json::object();
-    for (const auto& [piece, alpha] : s.alpha_overrides) overrides[std::to_string(piece)] = alpha;
-    strokes.push_back({{"points", pts}, {"t", t}, {"pressure", pressure}, {"tilt", tilt}, {"alpha_overrides", overrides},
-                       {"joint_overrides", pointsToJson(s.joint_overrides)}, {"apex_overrides", pointsToJson(s.apex_overrides)}});
-    if (s.raw.profile) strokes.back()["profile"] = true;
-    curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
+    sketch.strokes.push_back({s.raw, s.alpha_overrides, s.joint_overrides, s.apex_overrides});
+    sketch.curves.push_back(s.fit ? fitResultToJson(*s.fit, s.raw, false) : nlohmann::json{{"error", s.error}});
   }
-  nlohmann::json constructions = nlohmann::json::array();
-  for (const Construction& c : constructions_) constructions.push_back(c.toJson());
-  const nlohmann::json doc = {{"format", "lafair-sketch"}, {"version", 1}, {"options", fitOptionsToJson(options_)},
-                              {"strokes", strokes}, {"curves", curves}, {"constructions", constructions}, {"units", units_}};
-  writeFileAtomically(path.toStdString(), doc.dump(1) + "\n");
+  for (const Construction& c : constructions_) sketch.constructions.push_back(c.toJson());
+  writeFileAtomically(path.toStdString(), sketchToString(sketch));
 }
 
 void Document::load(const QString& path, bool provisional) {
   const std::string name = path.toStdString();
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(readFile(name));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw std::runtime_error(name + ": not a JSON document (" + e.what() + ")");
-  }
-  if (doc.value("format", std::string()) != "lafair-sketch")
-    throw std::runtime_error(name + ": not a lafair sketch (no \"format\": \"lafair-sketch\")");
-  std::vector<DocumentStroke> loaded;
-  FitOptions options;
-  try {
-  try {
-    options = fitOptionsFromJson(doc.value("options", nlohmann::json::object()));
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(name + ": " + e.what());
-  }
-  const auto& strokes = doc.at("strokes");
-  for (std::size_t i = 0; i < strokes.size(); ++i) {
-    Stroke raw;
-    const auto& pts = strokes[i].at("points");
-    const auto t = strokes[i].value("t", nlohmann::json::array());
-    const auto pr = strokes[i].value("pressure", nlohmann::json::array());
-    const auto tilt = strokes[i].value("tilt", nlohmann::json::array());
-    for (std::size_t k = 0; k < pts.size(); ++k) {
-      if (!pts[k].is_array() || pts[k].size() != 2)
-        throw std::runtime_error(name + ": strokes[" + std::to_string(i) + "].points[" + std::to_string(k) + "]: expected [x, y]");
-      StrokeSample s;
-      s.p = Vec2(pts[k][0].get<double>(), pts[k][1].get<double>());
-      if (k < t.size() && t[k].is_number()) s.t = t[k].get<double>();
-      if (k < pr.size() && pr[k].is_number()) s.pressure = pr[k].get<double>();
-      if (k < tilt.size() && tilt[k].is_array() && tilt[k].size() == 2 && tilt[k][0].is_number() && tilt[k][1].is_number()) {
-        s.tilt_x = tilt[k][0].get<double>();
-        s.tilt_y = tilt[k][1].get<double>();
-      }
-      raw.samples.push_back(s);
-    }
-    raw.profile = strokes[i].value("profile", false);
-    std::map<int, double> overrides;
-    const nlohmann::json saved = strokes[i].value("alpha_overrides", nlohmann::json::object());
-    for (const auto& [key, value] : saved.items()) overrides[std::stoi(key)] = value.get<double>();
-    loaded.push_back({raw, std::nullopt, {}, overrides,
-                      pointsFromJson(strokes[i].value("joint_overrides", nlohmann::json::object())),
-                      pointsFromJson(strokes[i].value("apex_overrides", nlohmann::json::object()))});
-  }
-  } catch (const nlohmann::json::exception& e) {  // missing key, wrong type
-    throw std::runtime_error(name + ": " + e.what());
-  }
+  Sketch sketch = parseSketch(readFile(name), name);
   std::vector<Construction> constructions;
-  const nlohmann::json saved = doc.value("constructions", nlohmann::json::array());
-  for (std::size_t i = 0; i < saved.size(); ++i)
-    constructions.push_back(Construction::fromJson(saved[i], name + ": constructions[" + std::to_string(i) + "]"));
-  options_ = options;
-  units_ = doc.value("units", std::string("px"));
+  for (std::size_t i = 0; i < sketch.constructions.size(); ++i)
+    constructions.push_back(Construction::fromJson(sketch.constructions[i], name + ": constructions[" + std::to_string(i) + "]"));
+  std::vector<DocumentStroke> loaded;
+  loaded.reserve(sketch.strokes.size());
+  for (SketchStroke& s : sketch.strokes)
+    loaded.push_back({std::move(s.raw), std::nullopt, {}, std::move(s.alpha_overrides), std::move(s.joint_overrides),
+                      std::move(s.apex_overrides)});
+  options_ = sketch.options;
+  units_ = std::move(sketch.units);
   strokes_ = std::move(loaded);
   constructions_ = std::move(constructions);
   for (DocumentStroke& s : strokes_) {

@@ -85,10 +85,9 @@ class Document {
   void restoreStroke(std::size_t index, DocumentStroke stroke, bool insert = false);
   void clear();
 
-  /// JSON document: {"format": "lafair-sketch", "version": 1, "options": {...},
-  /// "strokes": [{"points": [[x,y],...], "t": [...], "pressure": [...]}], "curves": [...],
-  /// "constructions": [{"kind", "handles", "parameters", "curve"}]}.
-  /// Written atomically; reading throws std::runtime_error naming the file and problem.
+  /// The sketch file (app/io/sketch_file.h), written atomically. Reading throws
+  /// std::runtime_error naming the file and the problem (SketchFileError for the file's
+  /// contents, Construction::fromJson's errors for a construction it cannot build).
   void save(const QString& path) const;
   void load(const QString& path, bool provisional = false);  // fits as setOptions
 

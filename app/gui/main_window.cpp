@@ -1147,7 +1147,7 @@ void MainWindow::buildMenus() {
     a->setData(static_cast<int>(what));
     a->setChecked(what == m_import_placement);
     m_placement_actions->addAction(a);
-    connect(a, &QAction::triggered, this, [this, what] { setImportPlacement(what); });
+    connect(a, &QAction::triggered, this, [this, choice = what] { setImportPlacement(choice); });
   }
   file->addAction("&Export curves…", this, [this] {
     const QString p = QFileDialog::getSaveFileName(this, "Export curves", {}, "SVG (*.svg);;DXF (*.dxf);;JSON (*.json);;CSV samples (*.csv)");
