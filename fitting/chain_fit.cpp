@@ -826,7 +826,8 @@ double capFactor(const Eigen::VectorXd& step, const Eigen::VectorXd& caps) {
 // the constraints. Leaves x, the feet and the model (with derivatives) at the best
 // point; counts iterations on.
 SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
-                     int max_iterations, double relative_decrease, double least_decrease, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
+                     int max_iterations, double relative_decrease, double least_decrease,
+                     std::chrono::steady_clock::time_point deadline, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
                      ChainModel& model, int& iterations) {
   auto merit = [](const Eigen::VectorXd& res, const Eigen::VectorXd& con) {
     return res.squaredNorm() + kConstraintMerit * con.squaredNorm();
@@ -843,6 +844,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   std::vector<FootFrame> trial_frames;
   Eigen::VectorXd trial_r, trial_c;
   for (int local = 0; local < max_iterations; ++local) {
+    if (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline) break;
     ++iterations;
     problem.jacobian(model, feet, frames, jac, cjac);
     const Eigen::MatrixXd a = normalMatrix(jac);
@@ -1151,7 +1153,7 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   const double least = kNegligibleDecrease * noise * noise;
   int iterations = 0;
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
-                                      x, used_feet, model, iterations);
+                                      options.deadline, x, used_feet, model, iterations);
   used.evaluate(model, used_feet, frames, r, c);
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.

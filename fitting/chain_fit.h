@@ -51,6 +51,7 @@
 // second-order correction, on bins of the points (the unknowns are few: about 3 per
 // segment; ChainFitOptions::max_points).
 
+#include <chrono>
 #include <vector>
 
 #include "core/la_segment.h"
@@ -90,6 +91,9 @@ struct ChainFitOptions {
   /// its point is the tip of the rounding: held there, the corner stays near the stroke.
   bool hold_corner_points = false;
   int max_iterations = 30;  // Levenberg-Marquardt steps
+  /// No step starts after this (FitOptions::time_budget_ms): the best chain so far is
+  /// kept, as at the iteration limit.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   /// Stop when a step lowers the cost by less than this fraction.
   double relative_decrease = 1e-7;
   /// Iterate on at most this many points (0: all): an even subsample, the ends kept,

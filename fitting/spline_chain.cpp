@@ -159,7 +159,8 @@ std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double 
 // the previous one's end, does not suit it): its span is halved (at an inflection
 // inside if any) and the chain shot again, at most kMaxHalvings times.
 std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
-                                       double min_alpha, double max_alpha, bool halve) {
+                                       double min_alpha, double max_alpha, bool halve,
+                                       std::chrono::steady_clock::time_point deadline) {
   constexpr double kShotLengthRatio = 2.0;
   constexpr int kMaxHalvings = 6;
   for (int halvings = 0;; ++halvings) {
@@ -169,7 +170,7 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
     std::size_t astray = n;
     for (std::size_t i = 0; i < n && astray == n; ++i)
       if (!(chain[i].length() < kShotLengthRatio * length[i] && kShotLengthRatio * chain[i].length() > length[i])) astray = i;
-    if (!halve || astray == n || halvings >= kMaxHalvings) return chain;
+    if (!halve || astray == n || halvings >= kMaxHalvings || std::chrono::steady_clock::now() >= deadline) return chain;
     const double t0 = spans[astray].t0, t1 = spans[astray].t1;
     double t = halvingPoint(spline, t0, t1).t;
     if (t < t0) t += spline.tMax() - spline.tMin();  // (wrapped past a closed spline's seam)

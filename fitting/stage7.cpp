@@ -98,7 +98,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
   co.max_iterations = kFitIterations;
   co.noise = context.noise.sigma;
   so.max_extrema = options.segmentation.max_extrema;
-  so.deadline = context.deadline;
+  so.deadline = co.deadline = context.deadline;
   // (DESIGN.md section 6: a bend tighter than the tolerance is a corner; a hair inside,
   // so that rounding leaves no radius under it)
   if (context.bound_radius) co.max_curvature = (1.0 - 1e-9) / context.tolerance;
@@ -131,7 +131,7 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
   // (with `halve`, the spline's spans where a shot segment sets off astray are halved)
   auto startFromSpline = [&](bool halve) {
     std::vector<PieceReport> spans = fit.spans;
-    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve);
+    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve, context.deadline);
     feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
   };
   if (from_spline) startFromSpline(false);
