@@ -62,6 +62,7 @@ TEST(FitOptionsJson, AWrongValueIsRefusedWithItsKey) {
   EXPECT_NE(errorOf({{"time_budget_ms", -1.0}}).find("\"time_budget_ms\""), std::string::npos);
   EXPECT_NE(errorOf({{"max_extrema", 1.5}}).find("\"max_extrema\""), std::string::npos);
   EXPECT_NE(errorOf({{"g2", "fast"}}).find("\"g2\""), std::string::npos);
+  EXPECT_NE(errorOf({{"g2", true}}).find("\"g2\""), std::string::npos);  // (found by the sketch fuzzer)
   EXPECT_NE(errorOf({{"polish", 1}}).find("\"polish\""), std::string::npos);
   EXPECT_NE(errorOf(nlohmann::json::array()).find("not an object"), std::string::npos);
 }

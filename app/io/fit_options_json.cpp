@@ -44,6 +44,8 @@ FitOptions fitOptionsFromJson(const nlohmann::json& j) {
     o.segmentation.max_extrema = j.at("max_extrema").get<int>();
   }
   o.segmentation.significance = number("significance", o.segmentation.significance, false);
+  if (j.contains("g2") && !j.at("g2").is_string())
+    throw std::invalid_argument("fit options: \"g2\" is not newton, bisection or off: " + j.at("g2").dump());
   const std::string g2 = j.value("g2", std::string(toString(o.g2)));
   if (g2 == toString(G2Method::kNewton)) o.g2 = G2Method::kNewton;
   else if (g2 == toString(G2Method::kBisection)) o.g2 = G2Method::kBisection;
