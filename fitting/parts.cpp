@@ -29,7 +29,10 @@ std::vector<Vec2> fillGaps(const std::vector<Vec2>& p, bool closed, double spaci
     const Vec2 a = p[i], b = p[(i + 1) % p.size()];
     const double length = (b - a).norm();
     if (!(length > kGapSteps * spacing)) continue;
-    const int pieces = static_cast<int>(std::ceil(length / spacing));
+    // (at most as many points as the part has: a gap of 1e11 steps, one coordinate
+    // mistyped, is filled more coarsely, not with 1e11 points)
+    const double most = std::max(kGapSteps, static_cast<double>(p.size()));
+    const int pieces = static_cast<int>(std::ceil(std::min(length / spacing, most)));
     for (int k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / pieces));
   }
   return out;
