@@ -6,6 +6,7 @@
 # json sketch fit). A crash, leak, UB, timeout (an input over 10 s) or memory blow-up
 # (over 2 GB) fails the run: the reproducer is written to build-fuzz/findings/<target>/
 # and its path printed; replay it with build-fuzz/tests/fuzz/<target>_fuzz FILE.
+# FUZZ_SEED=N fixes libFuzzer's seed (CI uses 1); unset, each run draws its own.
 # The corpus grows in build-fuzz/corpus/<target>/ from the committed seeds
 # (tests/fuzz/corpus/<target>/) and files of shared/data and samples/.
 set -euo pipefail
@@ -53,7 +54,7 @@ for target in "${targets[@]}"; do
   [ -f tests/fuzz/"$target".dict ] && dict=(-dict=tests/fuzz/"$target".dict)
   echo "== $target: ${seconds} s, corpus $(ls "$corpus" | wc -l) files"
   if build-fuzz/tests/fuzz/"$target"_fuzz "$corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
-       -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1; then
+       -seed="${FUZZ_SEED:-0}" -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1; then
     grep -E '^stat::number_of_executed_units|^#[0-9]+.*DONE' "$log" | tail -2 || true
   else
     failed+=("$target")
