@@ -247,8 +247,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_ra
                          (cap >= 0 ? " (the cap of " + std::to_string(cap) + " extrema per smooth part comes first)" : ""));
   r.out_of_time = context.outOfTime();
   if (r.out_of_time)
-    r.warnings.push_back("the time budget of " + std::to_string(options.time_budget_ms) +
-                         " ms ran out: the best G2 chain found by then");
+    r.warnings.push_back("the time budget of " + std::to_string(options.time_budget_ms) + " ms ran out: " +
+                         (r.g2.usable() ? "the best G2 chain found by then"
+                                        : "the chain of stages 1-6 as it stood, not G2 (no G2 chain was found by then)"));
   r.timings.total_ms = msSince(start);
   return r;
 }
