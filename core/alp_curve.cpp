@@ -145,7 +145,7 @@ AlpCurve::AlpCurve(std::vector<double> control_kappa, std::vector<double> weight
   if (isRational()) d_weights_ = bernsteinDerivative(weights_);
 
   const double bound = length_ * max_control;  // >= the turning per unit tau anywhere
-  const int initial = std::clamp(static_cast<int>(std::ceil(bound / kInitialPanelTurning)), 1, kMaxInitialPanels);
+  const int initial = ceilWithin(bound / kInitialPanelTurning, 1, kMaxInitialPanels);
 
   if (isRational()) {
     // Turning table: Chebyshev panels of the integral of K_R (theta to ~1e-14 of

@@ -67,7 +67,7 @@ BezierApproximation approximateWithBeziers(const ArcLengthCurve& segment, double
   // classic bound, and it keeps the handle formula away from tan's pole. (Equal
   // pieces in s: for a curve with an inflection some get less, none more than the
   // subdivision below fixes.)
-  const int pieces = std::max(1, static_cast<int>(std::ceil(segment.totalTurning() / (0.5 * std::numbers::pi))));
+  const int pieces = ceilWithin(segment.totalTurning() / (0.5 * std::numbers::pi), 1, 1 << 16);
   Vec2 a = segment.position(0.0, 1e-12);
   for (int i = 0; i < pieces; ++i) {
     const double s0 = segment.length() * i / pieces, s1 = segment.length() * (i + 1) / pieces;

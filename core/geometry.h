@@ -11,6 +11,14 @@ namespace la {
 
 using Vec2 = Eigen::Vector2d;
 
+/// ceil(x) as an int in [lo, hi]; NaN gives lo. Clamped before the conversion, which is
+/// undefined for a value an int cannot hold (a NaN turning, a curve turning 1e12 rad).
+inline int ceilWithin(double x, int lo, int hi) {
+  if (!(x > lo)) return lo;
+  if (!(x < hi)) return hi;
+  return static_cast<int>(std::ceil(x));
+}
+
 inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Direction angle of a vector in (-pi, pi].

@@ -229,7 +229,7 @@ void layoutPanels(const Problem& pb, const LaSegment& seg, std::vector<Panel>& p
   int count = 0;
   if (ka == kb || pb.beta_integer || pb.alpha == 0.0) {
     const double log_change = (pb.alpha == 0.0 && ka != kb) ? std::abs(std::log(kb / ka)) : 0.0;
-    const int n = std::clamp(static_cast<int>(std::ceil(log_change / kMaxLogChange)), 1, kMaxPanelsPerPart);
+    const int n = ceilWithin(log_change / kMaxLogChange, 1, kMaxPanelsPerPart);
     for (int i = 0; i < n; ++i) {
       Panel p;
       p.lo = len * i / n;
@@ -255,7 +255,7 @@ void layoutPanels(const Problem& pb, const LaSegment& seg, std::vector<Panel>& p
         d = r / (1.0 - r);
       }
     }
-    const int power = (d == 0.0) ? std::clamp(static_cast<int>(std::ceil(4.0 / std::max(pb.beta, 0.25))), 2, 16) : 1;
+    const int power = (d == 0.0) ? ceilWithin(4.0 / std::max(pb.beta, 0.25), 2, 16) : 1;
     double x = 0.0;  // distance from the near end, in units of len
     while (x < 1.0) {
       double w = (x == 0.0 && d == 0.0) ? kZeroEndPanel : kSingularWidthRatio * (d + x);
@@ -282,7 +282,7 @@ void layoutPanels(const Problem& pb, const LaSegment& seg, std::vector<Panel>& p
   for (int g = 0; g < count; ++g) {
     const Panel& p = graded[g].panel;
     const double turn = std::abs(seg.theta(p.hi) - seg.theta(p.lo));
-    const int n = std::clamp(static_cast<int>(std::ceil(turn / kMaxPanelTurning)), 1, kMaxPanelsPerPart);
+    const int n = ceilWithin(turn / kMaxPanelTurning, 1, kMaxPanelsPerPart);
     for (int i = 0; i < n; ++i) {
       Panel q = p;
       q.lo = p.lo + (p.hi - p.lo) * i / n;

@@ -31,7 +31,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   const std::size_t m = p.size();
   const double step = medianStep(p);
   const std::size_t span =
-      std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(kChordNoise * noise / std::max(step, 1e-300))), 1, m / 8 + 1);
+      static_cast<std::size_t>(ceilWithin(kChordNoise * noise / std::max(step, 1e-300), 1, static_cast<int>(m / 8 + 1)));
   if (m < 2 * span + 3) return std::nullopt;
   std::vector<double> angle;  // of each chord p[i] -> p[i + span], followed along
   for (std::size_t i = 0; i + span < m; ++i) {

@@ -1,6 +1,7 @@
 #include "fitting/parts.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include "fitting/quality.h"
@@ -32,7 +33,7 @@ std::vector<Vec2> fillGaps(const std::vector<Vec2>& p, bool closed, double spaci
     // (at most as many points as the part has: a gap of 1e11 steps, one coordinate
     // mistyped, is filled more coarsely, not with 1e11 points)
     const double most = std::max(kGapSteps, static_cast<double>(p.size()));
-    const int pieces = static_cast<int>(std::ceil(std::min(length / spacing, most)));
+    const int pieces = ceilWithin(std::min(length / spacing, most), 1, std::numeric_limits<int>::max());
     for (int k = 1; k < pieces; ++k) out.push_back(a + (b - a) * (static_cast<double>(k) / pieces));
   }
   return out;

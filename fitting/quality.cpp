@@ -160,7 +160,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     const LaSegment& seg = piece.segment;
     const double kmax = std::max(std::abs(seg.kappaStart()), std::abs(seg.kappaEnd()));
     const double h = std::sqrt(8.0 * resolution * diagonal / std::max(kmax, 1e-300));
-    const int n = std::clamp(static_cast<int>(std::ceil(seg.length() / h)) + 1, 8, 100000);
+    const int n = ceilWithin(seg.length() / h, 7, 99999) + 1;
     smp.clear();
     seg.sample(n, smp);
     poly.insert(poly.end(), smp.point.begin(), smp.point.end());
@@ -203,7 +203,7 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   std::vector<Vec2> samples;
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
-    const int n = std::clamp(static_cast<int>(std::ceil(piece.segment.length() / (kStrayStep * diagonal))) + 1, 2, 100000);
+    const int n = ceilWithin(piece.segment.length() / (kStrayStep * diagonal), 1, 99999) + 1;
     smp.clear();
     piece.segment.sample(n, smp);
     samples.insert(samples.end(), smp.point.begin(), smp.point.end());

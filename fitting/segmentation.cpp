@@ -11,6 +11,8 @@ namespace la {
 namespace {
 
 constexpr int kTurningSamples = 64;  // per piece, for measuring and cutting its turning
+// A piece is cut into at most this many by its turning (a spline gone wild turns 1e12 rad).
+constexpr int kMaxPartsPerPiece = kTurningSamples;
 constexpr int kRelocateSamples = 10; // per side, for the parabola through an extremum
 
 struct Critical {
@@ -203,7 +205,7 @@ Segmentation segmentSpline(const CubicBSpline& spline, double t_begin, double t_
     result.push_back(a);
     const double t1 = (b.t > a.t) ? b.t : b.t + period;  // closed: through the seam
     const std::vector<double> turn = cumulativeTurning(spline, a.t, t1, ts);
-    const int parts = static_cast<int>(std::ceil(std::abs(turn.back()) / options.max_piece_turning));
+    const int parts = ceilWithin(std::abs(turn.back()) / options.max_piece_turning, 0, kMaxPartsPerPiece);
     for (int k = 1; k < parts; ++k) {
       const double want = turn.back() * k / parts;
       int m = 1;
