@@ -63,16 +63,22 @@ void measureLeftOut(FitResult& r, const Stroke& stroke) {
                        " from them");
 }
 
+// The tolerance asked for on the raw samples' bounding box, which a hook's worth is tied
+// to (fitting/stroke.h; the cleaned points' box is known only after the clean-up).
+double hookTolerance(const Stroke& stroke, const FitOptions& options) {
+  if (options.tolerance > 0.0) return options.tolerance;
+  Vec2 lo = Vec2::Constant(INFINITY), hi = -lo;
+  for (const StrokeSample& sample : stroke.samples)
+    if (allFinite(sample.p)) lo = lo.cwiseMin(sample.p), hi = hi.cwiseMax(sample.p);
+  return lo.x() <= hi.x() ? options.tolerance_fraction * (hi - lo).norm() : 0.0;
+}
+
 // The whole pipeline, stage 7 bending no tighter than the tolerance where
 // `bound_radius`; the time budget counts from `start`.
-FitResult fitOnce(const Stroke& stroke, const FitOptions& options, bool bound_radius, Clock::time_point start) {
+FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, bool bound_radius,
+                  Clock::time_point start) {
   FitResult r;
-  // (the tolerance asked for, on the raw points' diagonal: it sets a hook's worth)
-  std::vector<Vec2> finite;
-  for (const StrokeSample& sample : stroke.samples)
-    if (allFinite(sample.p)) finite.push_back(sample.p);
-  r.cleaned = cleanStroke(stroke, options.cleanup,
-                          options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * boundingBoxDiagonal(finite));
+  r.cleaned = cleanStroke(stroke, options.cleanup, hook_tolerance);
   r.timings.cleanup_ms = msSince(start);
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
@@ -261,7 +267,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   if (stroke.samples.size() > options.max_points)
     throw StrokeError("the stroke has " + std::to_string(stroke.samples.size()) + " samples, more than " +
                       std::to_string(options.max_points) + " (FitOptions::max_points; lafit --max-points raises it)");
-  FitResult r = fitOnce(stroke, options, true, start);
+  const double hook_tolerance = hookTolerance(stroke, options);
+  FitResult r = fitOnce(stroke, options, hook_tolerance, true, start);
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
   // and the corners stage 7 adds do not always find: where the bound on the radius
   // costs the tolerance, the fit without it, if that keeps the tolerance.
@@ -274,9 +281,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   };
   // (only where some joint is on the bound: elsewhere the fit without it is the same)
   const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
-  const bool out_of_time = options.time_budget_ms > 0.0 && msSince(start) > options.time_budget_ms;
-  if (polishing && bounded && !r.cleaned.straight && !out_of_time && !r.over_polish_limit && misses(r)) {
-    FitResult free = fitOnce(stroke, options, false, start);
+  if (polishing && bounded && !r.cleaned.straight && !r.out_of_time && !r.over_polish_limit && misses(r)) {
+    FitResult free = fitOnce(stroke, options, hook_tolerance, false, start);
     if (!misses(free)) {
       free.timings.total_ms = msSince(start);
       return free;

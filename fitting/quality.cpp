@@ -84,6 +84,23 @@ class EdgeGrid {
     for (int e = 0; e < edges; ++e) cover(e, [&](std::size_t c) { edges_[fill[c]++] = e; });
   }
 
+  // The distance from p to the nearest edge, for queries in order along a curve: the
+  // `neighbours` edges either side of the previous query's nearest (`edge`, which
+  // becomes this one's) give a first bound, which the grid search confirms or beats.
+  double distanceAlong(const Vec2& p, int neighbours, int& edge) const {
+    const int edges = static_cast<int>(direction_.size());
+    double bound2 = INFINITY;
+    const int from = std::max(0, edge - neighbours), to = std::min(edges - 1, edge + neighbours);
+    for (int e = from; e <= to; ++e) {
+      const double d2 = distance2(p, e);
+      if (d2 < bound2) bound2 = d2, edge = e;
+    }
+    return distance(p, bound2, edge);
+  }
+
+  // How far p lies outside the box the grid covers (0 inside).
+  double outsideBox(const Vec2& p) const { return (lo_ - p).cwiseMax(p - hi_).cwiseMax(Vec2::Zero()).norm(); }
+
   // Squared distance from p to edge e (a point edge: to its start).
   double distance2(const Vec2& p, int e) const {
     const Vec2 ap = p - poly_[e];
@@ -176,19 +193,9 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
   for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
   const Vec2 margin = Vec2::Constant(0.1 * diagonal);
   const EdgeGrid grid(poly, std::pair(lo - margin, hi + margin));
-  // Points come in order along the stroke: the edges next to the previous point's nearest
-  // give a first bound, which the grid search then confirms or beats.
-  const int edges = static_cast<int>(poly.size()) - 1;
+  // (points come in order along the stroke)
   int edge = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    double bound2 = INFINITY;
-    const int from = std::max(0, edge - kNeighbourEdges), to = std::min(edges - 1, edge + kNeighbourEdges);
-    for (int e = from; e <= to; ++e) {
-      const double d2 = grid.distance2(points[i], e);
-      if (d2 < bound2) bound2 = d2, edge = e;
-    }
-    out[i] = grid.distance(points[i], bound2, edge);
-  }
+  for (std::size_t i = 0; i < points.size(); ++i) out[i] = grid.distanceAlong(points[i], kNeighbourEdges, edge);
   return out;
 }
 
@@ -208,30 +215,16 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
     piece.segment.sample(n, smp);
     samples.insert(samples.end(), smp.point.begin(), smp.point.end());
   }
-  // The edges next to the previous sample's nearest (as many as the points have per
-  // sample step) give a first bound, as in distancesToCurve.
-  const int edges = static_cast<int>(points.size()) - 1;
-  const int neighbours = kNeighbourEdges + 2 * edges / static_cast<int>(samples.size());
-  // A sample more than a diagonal outside the points' box counts by its distance to the
-  // box (a lower bound, and a curve run away): an exact search from there visits every
-  // cell of the grid.
-  Vec2 lo = points.front(), hi = points.front();
-  for (const Vec2& q : points) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  // (the first bound from as many edges either side as the points have per sample step)
+  const int neighbours = kNeighbourEdges + 2 * (static_cast<int>(points.size()) - 1) / static_cast<int>(samples.size());
   double worst = 0.0;
   int edge = 0;
   for (const Vec2& q : samples) {
-    const double outside = (lo - q).cwiseMax(q - hi).cwiseMax(Vec2::Zero()).norm();
-    if (outside > diagonal) {
-      worst = std::max(worst, outside);
-      continue;
-    }
-    double bound2 = INFINITY;
-    const int from = std::max(0, edge - neighbours), to = std::min(edges - 1, edge + neighbours);
-    for (int e = from; e <= to; ++e) {
-      const double d2 = grid.distance2(q, e);
-      if (d2 < bound2) bound2 = d2, edge = e;
-    }
-    worst = std::max(worst, grid.distance(q, bound2, edge));
+    // A sample more than a diagonal outside the points' box (the grid's) counts by its
+    // distance to the box (a lower bound, and a curve run away): an exact search from
+    // there visits every cell of the grid.
+    const double outside = grid.outsideBox(q);
+    worst = std::max(worst, outside > diagonal ? outside : grid.distanceAlong(q, neighbours, edge));
   }
   return worst;
 }
