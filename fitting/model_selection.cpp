@@ -36,6 +36,9 @@ constexpr double kSplitMargin = 0.15;
 constexpr double kHookRatio = 0.2;
 // A split is kept if it brings the worst point within the tolerance or this factor closer.
 constexpr double kMarkedGain = 0.99;
+// A trial simplification whose fit stops at its iteration limit further than this many
+// times the distance it must keep is not given the patience of longer fits.
+constexpr double kHopelessTrial = 2.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
@@ -309,14 +312,18 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   base.min_length = options.tolerance;
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
   // stopped, for `patience` times as many steps: a long chain far from its start needs
-  // them, and only such a chain pays for them.
+  // them, and only such a chain pays for them. A trial simplification that has to end
+  // within `keep_within` does not where it stopped further than kHopelessTrial times that
+  // (the trials that fail so paid for most of stage 7's time).
   // (an edit renumbers the corners' joints: each fit names the corners of its chain)
   auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet,
-                 const std::vector<ChainCorner>& corners) {
+                 const std::vector<ChainCorner>& corners, double keep_within = INFINITY) {
     ChainFitOptions o = base;
     o.corners = corners;
     ChainFitResult r = fitChain(start, points, start_feet, o);
-    if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance) return r;
+    if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance ||
+        r.max_distance > kHopelessTrial * keep_within)
+      return r;
     ChainFitOptions longer = o;
     longer.max_iterations *= options.patience;
     ChainFitResult more = fitChain(r.segments, points, r.feet, longer);
@@ -333,12 +340,12 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     ChainFitResult fit;
     std::vector<ChainCorner> corners;
   };
-  auto attempt = [&](const std::optional<Edit>& e) -> std::optional<Attempt> {
+  auto attempt = [&](const std::optional<Edit>& e, double keep_within = INFINITY) -> std::optional<Attempt> {
     if (!e) return std::nullopt;
     const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
     if (!rebuilt || rebuilt->empty()) return std::nullopt;
     std::vector<ChainCorner> corners = cornersOf(e->pieces, out.corners);
-    ChainFitResult r = fit(*rebuilt, e->feet, corners);
+    ChainFitResult r = fit(*rebuilt, e->feet, corners, keep_within);
     if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
     return Attempt{std::move(r), std::move(corners)};
   };
@@ -424,7 +431,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         if (edits >= options.max_edits || outOfTime()) break;
         auto r = attempt(c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
                          : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
-                                                   : straighten(segs, out.fit.feet, out.corners, c.index, c.count));
+                                                   : straighten(segs, out.fit.feet, out.corners, c.index, c.count),
+                         std::max(options.tolerance, out.fit.max_distance));  // (keep's bound)
         ++edits;
         // (a line only within the tolerance: bent again, it is a crude start for a split)
         if (!r || !keep(r->fit) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;

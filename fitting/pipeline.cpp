@@ -78,8 +78,9 @@ double hookTolerance(const Stroke& stroke, const FitOptions& options) {
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, bool bound_radius,
                   Clock::time_point start) {
   FitResult r;
+  const auto cleanup_start = Clock::now();  // (a rerun's start is the first run's)
   r.cleaned = cleanStroke(stroke, options.cleanup, hook_tolerance);
-  r.timings.cleanup_ms = msSince(start);
+  r.timings.cleanup_ms = msSince(cleanup_start);
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
   const Noise noise = noiseOf(r.cleaned.points);
@@ -104,7 +105,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
   std::size_t polish_room = options.max_polish_segments;
-  auto fitOne = [&](const Part& part) {
+  // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
+  auto fitOne = [&](const Part& part, bool other_starts) {
     if (polishing) {
       const auto tp = Clock::now();
       std::optional<PartFit> one = oneSegmentPart(part, context);
@@ -153,6 +155,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     };
     // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
     // segment): a chain close to the points.
+    if (!other_starts) return measure(fit), fit;
     if (misses() && !context.outOfTime()) consider(fitPart(part, context, false));
     // Pixel-quantized strokes: a spline through the stairs has an extremum at every
     // step and the chain from it strays; stages 2-6 on the points with their stairs
@@ -166,7 +169,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     return fit;
   };
   std::vector<PartFit> fits;
-  for (const Part& part : parts) fits.push_back(fitOne(part));
+  for (const Part& part : parts) fits.push_back(fitOne(part, true));
   // A corner is the clean-up's reading of the stroke, and a tight bend can pass for one.
   // Where a part beside a corner misses the tolerance and the two parts fitted as one
   // smooth part keep it, the corner goes. (The corner after part k: corners[k] of an
@@ -192,7 +195,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       merged.points.insert(merged.points.end(), parts[k + 1].points.begin() + 1, parts[k + 1].points.end());
       merged.ends_at_corner = parts[k + 1].ends_at_corner;
     }
-    PartFit smooth = fitOne(merged);
+    // (a merge is tried from stage 7's own start only: the other starts rescue a part
+    // that misses, which the two parts apart do not need)
+    PartFit smooth = fitOne(merged, false);
     if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance)) {
       ++k;
       continue;

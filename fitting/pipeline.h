@@ -119,6 +119,8 @@ struct PieceReport {
 /// Wall time per stage. Stage 5 (one LA segment per piece) has no line of its own:
 /// its solves happen inside alpha_ms (feasibility of each piece's alpha) and g2_ms
 /// (the first build of the chain and every rebuild while the joints move).
+/// The stages are those of the fit returned; total_ms also counts a first fit it
+/// replaced (the rerun without the bound on the radius, fitStroke).
 struct StageTimings {
   double cleanup_ms = 0, smoothing_ms = 0, segmentation_ms = 0, alpha_ms = 0, g2_ms = 0, polish_ms = 0,
          quality_ms = 0, total_ms = 0;
