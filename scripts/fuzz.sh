@@ -55,7 +55,7 @@ for target in "${targets[@]}"; do
   echo "== $target: ${seconds} s, corpus $(ls "$corpus" | wc -l) files"
   # (timeout: libFuzzer stops itself after SECONDS; were a run to hang past that and
   # the loading of its corpus, it fails here with its log instead of holding CI)
-  if timeout --kill-after=30 $((seconds + 600)) build-fuzz/tests/fuzz/"$target"_fuzz "$corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  if timeout --kill-after=30 $((seconds + 300)) build-fuzz/tests/fuzz/"$target"_fuzz "$corpus" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
        -seed="${FUZZ_SEED:-0}" -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1; then
     grep -E '^stat::number_of_executed_units|^#[0-9]+.*DONE' "$log" | tail -2 || true
   else
