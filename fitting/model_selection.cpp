@@ -39,6 +39,11 @@ constexpr double kMarkedGain = 0.99;
 // A trial simplification whose fit stops at its iteration limit further than this many
 // times the distance it must keep is not given the patience of longer fits.
 constexpr double kHopelessTrial = 2.0;
+// ... and one whose segments near the edit, fitted alone with their ends free, stay
+// further than this many times that distance is not fitted whole (at 2 a drawn star's
+// model selection took another path and missed its tolerance 1.8 times: a window's
+// fit stops at its own iteration limit, short of the relaxation's optimum).
+constexpr double kHopelessWindow = 4.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
@@ -362,6 +367,36 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   };
   // An edit is kept if the refitted chain is within the tolerance (or no further outside
   // it than before) and the points do not object (the F-test above).
+  // A trial edit's segments near `center` (two on either side, in the edited chain),
+  // fitted alone to the points whose feet are on them, their ends free: a relaxation of
+  // the whole chain's fit there. Where even it stays further than kHopelessWindow times
+  // `keep_within` from those points, the whole chain's fit would not keep the edit, and
+  // is not run (most trial simplifications fail, and a window costs a fraction of the
+  // chain). Not across a corner, nor where the window is most of the chain.
+  auto hopelessNearby = [&](const Edit& e, std::size_t center, double keep_within) {
+    const std::size_t n = e.pieces.size();
+    const std::size_t lo = center >= 2 ? center - 2 : 0, hi = std::min(n, center + 2);
+    if (lo >= hi || 2 * (hi - lo) > n) return false;
+    for (std::size_t i = lo; i < hi; ++i)
+      if ((i > lo || i == 0) && e.pieces[i].atCorner()) return false;
+    if (hi < n && e.pieces[hi].atCorner()) return false;
+    const auto rebuilt = rebuild(e.start, e.theta, e.pieces);
+    if (!rebuilt) return false;
+    std::vector<LaSegment> window(rebuilt->begin() + static_cast<std::ptrdiff_t>(lo), rebuilt->begin() + static_cast<std::ptrdiff_t>(hi));
+    std::vector<Vec2> near;
+    std::vector<ChainFoot> near_feet;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (e.feet[k].segment >= lo && e.feet[k].segment < hi) {
+        near.push_back(points[k]);
+        near_feet.push_back({e.feet[k].segment - lo, e.feet[k].u});
+      }
+    ChainFitOptions o = base;
+    o.corners.clear();
+    o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
+    o.weights.clear();
+    const ChainFitResult r = fitChain(window, near, near_feet, o);
+    return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * keep_within;
+  };
   auto keep = [&](const ChainFitResult& r) {
     if (r.max_distance > std::max(options.tolerance, out.fit.max_distance)) return false;
     const double variance = out.fit.ssr / std::max(1.0, n_points - out.fit.unknowns);
@@ -429,11 +464,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
         if (edits >= options.max_edits || outOfTime()) break;
-        auto r = attempt(c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
-                         : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
-                                                   : straighten(segs, out.fit.feet, out.corners, c.index, c.count),
-                         std::max(options.tolerance, out.fit.max_distance));  // (keep's bound)
+        const std::optional<Edit> e = c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
+                                      : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
+                                                                : straighten(segs, out.fit.feet, out.corners, c.index, c.count);
+        const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         ++edits;
+        if (e && hopelessNearby(*e, c.index, keep_within)) continue;
+        auto r = attempt(e, keep_within);
         // (a line only within the tolerance: bent again, it is a crude start for a split)
         if (!r || !keep(r->fit) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         take(std::move(*r));
