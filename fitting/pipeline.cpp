@@ -83,7 +83,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   r.timings.cleanup_ms = msSince(cleanup_start);
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
-  const Noise noise = noiseOf(r.cleaned.points);
+  const Noise noise = noiseOf(r.cleaned.points, r.cleaned.corners);
   r.tolerance = std::max(r.requested_tolerance, noise.floor);
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};

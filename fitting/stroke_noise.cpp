@@ -23,6 +23,10 @@ constexpr double kConcentratedQuartiles = 0.6;
 // ... and whose signs change between this share of neighbours (noise: 80%).
 constexpr double kZigzagSignChanges = 0.95;
 
+// Where leaving out the differences across corners lowers the noise estimate more than
+// this many times, the corners set it (noiseOf).
+constexpr double kCornersSetTheNoise = 2.0;
+
 // The noise floor of the tolerance is this many standard deviations of the points'
 // estimated noise: a 2D Gaussian exceeds 4 sigma with probability e^-8 ~ 3e-4.
 constexpr double kNoiseSigmas = 4.0;
@@ -35,10 +39,15 @@ constexpr double kNoiseSigmas = 4.0;
 // noise sigma have standard deviation sigma sqrt(70); the median ignores corners. With
 // `lag`, the differences of every lag-th point: noise that repeats over up to `lag`
 // neighbouring samples cancels partly in the differences of neighbours, not in these.
-double noiseSigma(const std::vector<Vec2>& p, std::size_t lag = 1) {
+// Differences whose five points span one of `corners` (strictly inside) are left out.
+double noiseSigma(const std::vector<Vec2>& p, const std::vector<std::size_t>& corners, std::size_t lag = 1) {
   if (p.size() < 4 * lag + 3) return 0.0;
+  std::vector<bool> across_corner(p.size(), false);  // (by the difference's middle point)
+  for (std::size_t c : corners)
+    for (std::size_t i = c >= 2 * lag ? c - 2 * lag + 1 : 0; i < std::min(p.size(), c + 2 * lag); ++i) across_corner[i] = true;
   std::vector<double> signed_d;
   for (std::size_t i = 2 * lag; i + 2 * lag < p.size(); ++i) {
+    if (across_corner[i]) continue;
     const Vec2 chord = p[i + 2 * lag] - p[i - 2 * lag];
     const double len = chord.norm();
     if (!(len > 0.0)) continue;
@@ -94,12 +103,20 @@ double gridStep(const std::vector<Vec2>& p, int axis) {
 // taken at lag 2 as well, the larger estimate kept. Larger lags, and sparser samples,
 // would span the curve's own bends (its share grows as lag^4): at lag 3 small glyphs'
 // tolerances rose up to 4x, and lag 2 on strokes sampled every 3-8 pixels 1.6-3x.
-Noise noiseOf(const std::vector<Vec2>& p) {
+Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corners) {
   const double hx = gridStep(p, 0), hy = gridStep(p, 1);
   const bool on_grid = hx > 0.0 && hy > 0.0;
   const double h = std::max(hx, hy);
   const bool stairs = on_grid && medianStep(p) <= kStairSteps * h;
-  const double sigma = stairs ? std::max(noiseSigma(p), noiseSigma(p, 2)) : noiseSigma(p);
+  auto sigmaOf = [&](const std::vector<std::size_t>& left_out) {
+    return stairs ? std::max(noiseSigma(p, left_out), noiseSigma(p, left_out, 2)) : noiseSigma(p, left_out);
+  };
+  // (a stroke's few corners move the median little, and their neighbourhoods may hold
+  // more than noise: only where leaving them out changes the estimate several times
+  // over are they what set it)
+  double sigma = sigmaOf({});
+  if (!corners.empty())
+    if (const double without = sigmaOf(corners); kCornersSetTheNoise * without < sigma) sigma = without;
   Noise n;
   n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
   n.floor = std::max(kNoiseSigmas * sigma, on_grid ? kQuantizationFloor * h : 0.0);

@@ -15,7 +15,11 @@ struct Noise {
   bool on_grid = false;  // the points lie on a pixel grid
 };
 
-Noise noiseOf(const std::vector<Vec2>& points);
+/// `corners`: indices of the points' deliberate corners (CleanStroke::corners). Where
+/// the differences across them are what sets the estimate (a zigzag whose legs are a
+/// few samples long: most differences span a vertex), they are left out, so the zigzag
+/// is not taken for noise of its own size.
+Noise noiseOf(const std::vector<Vec2>& points, const std::vector<std::size_t>& corners = {});
 
 /// The points with a binomial filter (1 4 6 4 1)/16 over five neighbours; an open
 /// part's ends stay. On a pixel grid it turns a one-pixel stair into a slope.

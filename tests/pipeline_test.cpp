@@ -889,6 +889,23 @@ TEST(PipelineCorners, CornerBetweenSamplesLandsWhereTheArmsMeet) {
 // next side's start), with noise of 0.1% of the diagonal: every side comes out a
 // straight line (a straight part is fitted across corners as a line), the corners
 // within three noise sigmas of the true ones, the curve within the tolerance.
+// A zigzag of amplitude 10 whose legs are three samples each, on the pixel grid: its
+// vertices are corners, and the differences across them are not taken for noise (they
+// raised the tolerance to 6.2, 60% of the amplitude).
+TEST(PipelineCorners, AZigzagOfShortLegsKeepsItsCornersAndTheTolerance) {
+  std::vector<Vec2> p;
+  for (int leg = 0; leg < 12; ++leg)
+    for (int k = 0; k < 3; ++k) {
+      const double t = k / 3.0, y0 = leg % 2 ? 10.0 : -10.0;
+      p.emplace_back(std::round(8.0 * (leg + t)), std::round(y0 - 2.0 * y0 * t));
+    }
+  p.emplace_back(96.0, 10.0);
+  const FitResult r = fitStroke(strokeOf(p));
+  EXPECT_GE(r.cleaned.corners.size(), 10u);  // (of 11: the first leg is as short as a pen-down hook)
+  EXPECT_FALSE(raisedTolerance(r)) << r.tolerance;
+  EXPECT_LE(r.quality.max_dev, r.tolerance);
+}
+
 TEST(PipelineCorners, StraightSidesStayStraight) {
   const std::vector<Vec2> zed = {{0, 0}, {120, 0}, {10, -100}, {130, -100}};
   const double sigma = 0.2;

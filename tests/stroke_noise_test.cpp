@@ -66,5 +66,33 @@ TEST(StrokeNoise, AZigzagAtTheSamplingScaleIsNotNoise) {
   EXPECT_LT(n.floor, 10.0);  // under the zigzag's amplitude
 }
 
+// Legs of three samples (a vertex and two between), x by 8 and y +-10 a leg, on the
+// nearest pixel: every fourth difference spans a vertex, and read as noise they put the
+// floor near the zigzag's own size; left out at the corners the clean-up finds (the
+// vertices), they do not.
+TEST(StrokeNoise, AZigzagOfShortLegsIsNotNoiseAcrossItsCorners) {
+  std::vector<Vec2> p;
+  std::vector<std::size_t> vertices;
+  for (int leg = 0; leg < 12; ++leg)
+    for (int k = 0; k < 3; ++k) {
+      if (k == 0 && leg > 0) vertices.push_back(p.size());
+      const double t = k / 3.0, y0 = leg % 2 ? 10.0 : -10.0;
+      p.emplace_back(std::round(8.0 * (leg + t)), std::round(y0 - 2.0 * y0 * t));
+    }
+  p.emplace_back(96.0, 10.0);
+  const Noise all = noiseOf(p);
+  EXPECT_GT(all.floor, 5.0) << "the vertices read as noise (the case this guards against)";
+  // (every five neighbours span a vertex: nothing is left that shows noise; the legs'
+  // rounding is under a pixel)
+  EXPECT_LT(noiseOf(p, vertices).floor, 1.5);
+}
+
+// A stroke's few corners do not lower its noise: a noisy arc with two corners marked
+// reads as the arc alone does.
+TEST(StrokeNoise, AFewCornersLeaveTheEstimateAsItWas) {
+  const std::vector<Vec2> p = noisyArc(1.0);
+  EXPECT_EQ(noiseOf(p, {50, 100}).sigma, noiseOf(p).sigma);
+}
+
 }  // namespace
 }  // namespace la
