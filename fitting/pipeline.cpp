@@ -107,6 +107,14 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   std::size_t polish_room = options.max_polish_segments;
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOne = [&](const Part& part, bool other_starts) {
+    if (polishing && context.outOfTime()) {
+      // Out of time before this part: the paper's G2 chain (stages 2-6, a fraction of
+      // stage 7's time) rather than the spline's shot chain, unfitted, which stage 7 would
+      // leave (a glyph's second part came out 39 times the tolerance off).
+      PartFit paper = fitPart(part, context, false);
+      paper.max_dev = maxDeviationOf(paper.segments, part.points, diag);
+      return paper;
+    }
     if (polishing) {
       const auto tp = Clock::now();
       std::optional<PartFit> one = oneSegmentPart(part, context);
@@ -153,10 +161,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
                                                                : measure(other) < measure(fit);
       if (better) fit = std::move(other);
     };
-    // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
-    // segment): a chain close to the points.
     if (!other_starts) return measure(fit), fit;
-    if (misses() && !context.outOfTime()) consider(fitPart(part, context, false));
+    // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
+    // segment): a chain close to the points. (Also out of time: stage 7's chain may have
+    // been cut short far from the points, and the paper's costs a fraction of it.)
+    if (misses()) consider(fitPart(part, context, false));
     // Pixel-quantized strokes: a spline through the stairs has an extremum at every
     // step and the chain from it strays; stages 2-6 on the points with their stairs
     // smoothed (stage 7 still fits the points themselves).
