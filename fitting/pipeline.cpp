@@ -106,7 +106,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
   std::size_t polish_room = options.max_polish_segments;
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
-  auto fitOne = [&](const Part& part, bool other_starts) {
+  auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& context) {
     if (polishing && context.outOfTime()) {
       // Out of time before this part: the paper's G2 chain (stages 2-6, a fraction of
       // stage 7's time) rather than the spline's shot chain, unfitted, which stage 7 would
@@ -175,6 +175,33 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       consider(fitPart(smoothed, context, true));
     }
     measure(fit);
+    return fit;
+  };
+  // A part whose chain misses the tolerance with a joint on the bound of the radius (the
+  // points need a bend tighter than it that the clean-up took for no corner): fitted
+  // again without the bound, kept if closer. (Part by part: the other parts keep it, and
+  // the merges and the fit across corners below see a part that keeps the tolerance.)
+  auto fitOne = [&](const Part& part, bool other_starts) {
+    const std::size_t room = polish_room;
+    PartFit fit = fitOneWith(part, other_starts, context);
+    const auto worst = [&](PartFit& f) {
+      if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
+      if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
+      return std::max(f.max_dev, f.stray);
+    };
+    double on_bound = 0.0;
+    for (const LaSegment& s : fit.segments)
+      on_bound = std::max({on_bound, std::abs(s.kappaStart()) * r.tolerance, std::abs(s.kappaEnd()) * r.tolerance});
+    if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit || !(worst(fit) > r.tolerance) ||
+        on_bound <= kOnTheBound)
+      return fit;
+    const std::size_t bounded_room = polish_room;
+    polish_room = room;
+    FitContext unbounded = context;
+    unbounded.bound_radius = false;
+    PartFit other = fitOneWith(part, other_starts, unbounded);
+    if (other.g2.usable() && worst(other) < worst(fit)) return other;
+    polish_room = bounded_room;
     return fit;
   };
   std::vector<PartFit> fits;
