@@ -136,12 +136,15 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (options.g2 != G2Method::kOff && overCap(fit.segments, part.closed, context)) polishPart(fit, part, context, false);
       return fit;
     }
-    auto polish = [&](PartFit& f) {
+    auto polish = [&](PartFit& f, SplineStart spline_start) {
       const auto tp = Clock::now();
-      polishPart(f, part, context);
+      polishPart(f, part, context, true, spline_start);
       r.timings.polish_ms += msSince(tp);
     };
-    polish(fit);
+    // (the spline's halved spans only after the paper's chain, below: where the shot
+    // spans end astray, that is usually closer, and it costs a fraction of them)
+    const PartFit unpolished = other_starts ? fit : PartFit{};
+    polish(fit, other_starts ? SplineStart::kShot : SplineStart::kShotThenHalved);
     // Where that leaves a gap, a miss or a stray (the curve going where the stroke did
     // not: a loop between two points), other starts: the better result stays (G2 first,
     // then the larger of the deviation from the part's points and the stray).
@@ -151,8 +154,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       return std::max(f.max_dev, f.stray);
     };
     auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
-    auto consider = [&](PartFit other) {
-      polish(other);
+    auto consider = [&](PartFit other, SplineStart spline_start = SplineStart::kShotThenHalved) {
+      polish(other, spline_start);
       // (G2 first, then the cap on extrema, then the deviation)
       const bool other_kept = !overCap(other.segments, part.closed, context);
       const bool kept = !overCap(fit.segments, part.closed, context);
@@ -166,6 +169,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // segment): a chain close to the points. (Also out of time: stage 7's chain may have
     // been cut short far from the points, and the paper's costs a fraction of it.)
     if (misses()) consider(fitPart(part, context, false));
+    if (misses() && !context.outOfTime()) consider(unpolished, SplineStart::kHalved);
     // Pixel-quantized strokes: a spline through the stairs has an extremum at every
     // step and the chain from it strays; stages 2-6 on the points with their stairs
     // smoothed (stage 7 still fits the points themselves).

@@ -114,7 +114,8 @@ bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitConte
 }
 
 // (fits its chain to the points and selects its segments, fitting/model_selection.h)
-void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments) {
+void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments,
+                SplineStart spline_start) {
   if (!fit.spline) return;  // a straight part
   const FitOptions& options = context.options;
   const double tol = context.tolerance, diag = context.diagonal;
@@ -134,10 +135,18 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve, context.deadline);
     feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
   };
-  if (from_spline) startFromSpline(false);
+  if (spline_start == SplineStart::kHalved) {
+    if (!from_spline) return;
+    startFromSpline(false);
+    const std::size_t shot = start.size();
+    startFromSpline(true);
+    if (start.empty() || start.size() == shot) return;
+  } else if (from_spline) {
+    startFromSpline(false);
+  }
   if (start.empty()) return;
   SelectionResult selected = selectChain(start, part.points, feet, so);
-  if (from_spline && selected.fit.max_distance > kAstrayFit * tol) {
+  if (from_spline && spline_start == SplineStart::kShotThenHalved && selected.fit.max_distance > kAstrayFit * tol) {
     // Far outside the tolerance from the spline's chain: again from its spans halved
     // where it set off astray, the closer kept. (Within twice the tolerance, the fit
     // across corners usually closes the gap, and the halved start only adds segments.)

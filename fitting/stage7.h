@@ -19,13 +19,20 @@ namespace la {
 /// chords by about a tolerance.
 inline constexpr double kStrayWarning = 2.0;
 
+/// How stage 7 starts from a part's spline (where stage 6 has no G2 chain): one segment
+/// shot per span, and where that fit ends astray (kAstrayFit), again from the spans halved
+/// where a shot sets off astray, the closer kept; or only the first, or only the second
+/// (nothing changes where halving changes no span).
+enum class SplineStart { kShotThenHalved, kShot, kHalved };
+
 /// Stage 7 on one part, from stage 6's chain or, where that has no G2 chain, from the
 /// spline (fitting/spline_chain.h). The result replaces the part's chain where it is
 /// within the tolerance, closer to the points than that chain, or that chain has gaps or
 /// more extrema than the cap (FitOptions::segmentation.max_extrema); fit.max_dev is then
 /// known. Without `choose_segments`, only the cap's merges edit the chain (the paper's
 /// pipeline over the cap).
-void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true);
+void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true,
+                SplineStart spline_start = SplineStart::kShotThenHalved);
 
 /// Stage 7's selection options for `parts` parts' points: the tolerance less a margin,
 /// the alpha range and the bound on curvature, the points and iterations per fit, the
