@@ -21,6 +21,9 @@ constexpr double kLeftOutWarning = 0.05;
 // A curve whose largest curvature is above this fraction of 1 / tolerance has a joint on
 // stage 7's bound (see fitStroke).
 constexpr double kOnTheBound = 0.999;
+// A part whose chain with a joint on the bound misses by more than this many tolerances
+// misses for another reason (a scribble's): it is not fitted again without the bound.
+constexpr double kBoundsMiss = 4.0;
 
 // A straight stroke: its lines, a corner of pi where it turns back.
 void fitStraight(FitResult& r) {
@@ -197,7 +200,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     for (const LaSegment& s : fit.segments)
       on_bound = std::max({on_bound, std::abs(s.kappaStart()) * r.tolerance, std::abs(s.kappaEnd()) * r.tolerance});
     if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit || !(worst(fit) > r.tolerance) ||
-        on_bound <= kOnTheBound)
+        worst(fit) > kBoundsMiss * r.tolerance || on_bound <= kOnTheBound)
       return fit;
     const std::size_t bounded_room = polish_room;
     polish_room = room;

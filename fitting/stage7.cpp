@@ -27,9 +27,6 @@ constexpr double kSelectionMargin = 0.01;
 // more than this fraction of the tolerance, else by stage 6's joint rotation, which
 // fails on nearly straight segments (see snapToJoints).
 constexpr double kSnapReach = 0.1;
-// A part's stage 7 fit from the spline's chain that ends further than this many
-// tolerances from its points has set off astray: it is tried again from a finer start.
-constexpr double kAstrayFit = 2.0;
 // A part's curve is measured for straying (fitStroke's alternative starts) where it is
 // longer than the part's polyline by this factor.
 constexpr double kStrayLength = 1.02;

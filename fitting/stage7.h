@@ -19,6 +19,10 @@ namespace la {
 /// chords by about a tolerance.
 inline constexpr double kStrayWarning = 2.0;
 
+/// A part's stage 7 fit from the spline's chain that ends further than this many
+/// tolerances from its points has set off astray: it is tried again from a finer start.
+inline constexpr double kAstrayFit = 2.0;
+
 /// How stage 7 starts from a part's spline (where stage 6 has no G2 chain): one segment
 /// shot per span, and where that fit ends astray (kAstrayFit), again from the spans halved
 /// where a shot sets off astray, the closer kept; or only the first, or only the second
