@@ -108,6 +108,13 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
   std::size_t polish_room = options.max_polish_segments;
+  // The larger of a part's chain's deviation from its points and its stray (the curve
+  // going where the stroke did not: a loop between two points), each measured once.
+  auto worstOf = [&](PartFit& f, const Part& part) {
+    if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
+    if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
+    return std::max(f.max_dev, f.stray);
+  };
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& context) {
     if (polishing && context.outOfTime()) {
@@ -148,14 +155,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // spans end astray, that is usually closer, and it costs a fraction of them)
     const PartFit unpolished = other_starts ? fit : PartFit{};
     polish(fit, other_starts ? SplineStart::kShot : SplineStart::kShotThenHalved);
-    // Where that leaves a gap, a miss or a stray (the curve going where the stroke did
-    // not: a loop between two points), other starts: the better result stays (G2 first,
-    // then the larger of the deviation from the part's points and the stray).
-    auto measure = [&](PartFit& f) {
-      if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
-      if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
-      return std::max(f.max_dev, f.stray);
-    };
+    // Where that leaves a gap, a miss or a stray, other starts: the better result stays
+    // (G2 first, then the larger of the deviation from the part's points and the stray).
+    auto measure = [&](PartFit& f) { return worstOf(f, part); };
     auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
     auto consider = [&](PartFit other, SplineStart spline_start = SplineStart::kShotThenHalved) {
       polish(other, spline_start);
@@ -191,11 +193,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   auto fitOne = [&](const Part& part, bool other_starts) {
     const std::size_t room = polish_room;
     PartFit fit = fitOneWith(part, other_starts, context);
-    const auto worst = [&](PartFit& f) {
-      if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
-      if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
-      return std::max(f.max_dev, f.stray);
-    };
+    const auto worst = [&](PartFit& f) { return worstOf(f, part); };
     double on_bound = 0.0;
     for (const LaSegment& s : fit.segments)
       on_bound = std::max({on_bound, std::abs(s.kappaStart()) * r.tolerance, std::abs(s.kappaEnd()) * r.tolerance});
