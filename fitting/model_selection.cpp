@@ -345,14 +345,20 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     ChainFitResult fit;
     std::vector<ChainCorner> corners;
   };
+  // (an edit's chain, rebuilt from its pieces: given where the caller has it already)
+  auto attemptRebuilt = [&](const Edit& e, const std::vector<LaSegment>& rebuilt,
+                            double keep_within) -> std::optional<Attempt> {
+    if (rebuilt.empty()) return std::nullopt;
+    std::vector<ChainCorner> corners = cornersOf(e.pieces, out.corners);
+    ChainFitResult r = fit(rebuilt, e.feet, corners, keep_within);
+    if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
+    return Attempt{std::move(r), std::move(corners)};
+  };
   auto attempt = [&](const std::optional<Edit>& e, double keep_within = INFINITY) -> std::optional<Attempt> {
     if (!e) return std::nullopt;
     const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
-    if (!rebuilt || rebuilt->empty()) return std::nullopt;
-    std::vector<ChainCorner> corners = cornersOf(e->pieces, out.corners);
-    ChainFitResult r = fit(*rebuilt, e->feet, corners, keep_within);
-    if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
-    return Attempt{std::move(r), std::move(corners)};
+    if (!rebuilt) return std::nullopt;
+    return attemptRebuilt(*e, *rebuilt, keep_within);
   };
   auto take = [&](Attempt&& a) {
     out.fit = std::move(a.fit);
@@ -365,24 +371,20 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     out.out_of_time = true;
     return true;
   };
-  // An edit is kept if the refitted chain is within the tolerance (or no further outside
-  // it than before) and the points do not object (the F-test above).
   // A trial edit's segments near `center` (two on either side, in the edited chain),
   // fitted alone to the points whose feet are on them, their ends free: a relaxation of
   // the whole chain's fit there. Where even it stays further than kHopelessWindow times
   // `keep_within` from those points, the whole chain's fit would not keep the edit, and
   // is not run (most trial simplifications fail, and a window costs a fraction of the
   // chain). Not across a corner, nor where the window is most of the chain.
-  auto hopelessNearby = [&](const Edit& e, std::size_t center, double keep_within) {
+  auto hopelessNearby = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, std::size_t center, double keep_within) {
     const std::size_t n = e.pieces.size();
     const std::size_t lo = center >= 2 ? center - 2 : 0, hi = std::min(n, center + 2);
     if (lo >= hi || 2 * (hi - lo) > n) return false;
     for (std::size_t i = lo; i < hi; ++i)
       if ((i > lo || i == 0) && e.pieces[i].atCorner()) return false;
     if (hi < n && e.pieces[hi].atCorner()) return false;
-    const auto rebuilt = rebuild(e.start, e.theta, e.pieces);
-    if (!rebuilt) return false;
-    std::vector<LaSegment> window(rebuilt->begin() + static_cast<std::ptrdiff_t>(lo), rebuilt->begin() + static_cast<std::ptrdiff_t>(hi));
+    std::vector<LaSegment> window(rebuilt.begin() + static_cast<std::ptrdiff_t>(lo), rebuilt.begin() + static_cast<std::ptrdiff_t>(hi));
     std::vector<Vec2> near;
     std::vector<ChainFoot> near_feet;
     for (std::size_t k = 0; k < points.size(); ++k)
@@ -397,6 +399,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const ChainFitResult r = fitChain(window, near, near_feet, o);
     return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * keep_within;
   };
+  // An edit is kept if the refitted chain is within the tolerance (or no further outside
+  // it than before) and the points do not object (the F-test above).
   auto keep = [&](const ChainFitResult& r) {
     if (r.max_distance > std::max(options.tolerance, out.fit.max_distance)) return false;
     const double variance = out.fit.ssr / std::max(1.0, n_points - out.fit.unknowns);
@@ -469,8 +473,10 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
                                                                 : straighten(segs, out.fit.feet, out.corners, c.index, c.count);
         const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         ++edits;
-        if (e && hopelessNearby(*e, c.index, keep_within)) continue;
-        auto r = attempt(e, keep_within);
+        if (!e) continue;
+        const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
+        if (!rebuilt || hopelessNearby(*e, *rebuilt, c.index, keep_within)) continue;
+        auto r = attemptRebuilt(*e, *rebuilt, keep_within);
         // (a line only within the tolerance: bent again, it is a crude start for a split)
         if (!r || !keep(r->fit) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         take(std::move(*r));

@@ -1,8 +1,8 @@
 #include "fitting/parts.h"
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 
 #include "fitting/quality.h"
 

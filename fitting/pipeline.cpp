@@ -193,13 +193,14 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   auto fitOne = [&](const Part& part, bool other_starts) {
     const std::size_t room = polish_room;
     PartFit fit = fitOneWith(part, other_starts, context);
+    if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit) return fit;
     const auto worst = [&](PartFit& f) { return worstOf(f, part); };
-    double on_bound = 0.0;
-    for (const LaSegment& s : fit.segments)
-      on_bound = std::max({on_bound, std::abs(s.kappaStart()) * r.tolerance, std::abs(s.kappaEnd()) * r.tolerance});
-    if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit || !(worst(fit) > r.tolerance) ||
-        worst(fit) > kBoundsMiss * r.tolerance || on_bound <= kOnTheBound)
-      return fit;
+    const double miss = worst(fit);
+    // (an LA segment's curvature is monotone: its largest is at an end)
+    const bool on_bound = std::any_of(fit.segments.begin(), fit.segments.end(), [&](const LaSegment& s) {
+      return std::max(std::abs(s.kappaStart()), std::abs(s.kappaEnd())) * r.tolerance > kOnTheBound;
+    });
+    if (!(miss > r.tolerance) || miss > kBoundsMiss * r.tolerance || !on_bound) return fit;
     const std::size_t bounded_room = polish_room;
     polish_room = room;
     FitContext unbounded = context;
@@ -317,7 +318,9 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   FitResult r = fitOnce(stroke, options, hook_tolerance, true, start);
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
   // and the corners stage 7 adds do not always find: where the bound on the radius
-  // costs the tolerance, the fit without it, if that keeps the tolerance.
+  // costs the tolerance, the fit without it, if that keeps the tolerance. (fitOnce does
+  // so part by part; this is for what only the whole stroke shows: a part fitted after
+  // a merge or across corners, a miss beyond kBoundsMiss, a stray.)
   const bool polishing = options.polish && options.g2 != G2Method::kOff;
   // (missed: a point outside the tolerance, or the curve further than twice it, and a
   // sample step, from the stroke's polyline: a loop, or a corner run past its tip)
