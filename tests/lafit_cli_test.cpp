@@ -11,6 +11,9 @@
 //    curves from their intrinsic segments: G1 and G2 gaps below the thresholds
 //    (1e-9 rad, 1e-6 relative; DESIGN.md section 6) and the deviation within the
 //    tolerance lafit reports;
+//  - the SVG's cubic Bezier paths, on every shared airfoil and glyph, within the
+//    tolerance the file states of the JSON's LA curves (both ways), that tolerance a
+//    tenth of the fit's or less;
 //  - --tolerance, --max-extrema, --g2 newton|bisection|off, --paper-only, --closed;
 //  - a file of several strokes with a dot among them: one curve per stroke, in order,
 //    an error entry for the dot;
@@ -43,6 +46,10 @@
 
 #include "app/lafit/fit_options.h"
 #include "app/lafit/outputs.h"
+#include "core/curve_json.h"
+#include "tests/shared_data_sets.h"
+#include "tests/svg_bezier_paths.h"
+#include "tests/test_support.h"
 
 namespace la {
 namespace {
@@ -553,6 +560,62 @@ TEST_F(LafitCli, FitClosedMakesEveryGlyphContourClosed) {
   const json closed = curvesOf(readJson("closed.json"));
   expectFittedCurves(closed, open.size());
   for (std::size_t i = 0; i < closed.size(); ++i) EXPECT_TRUE(closed[i].at("closed").get<bool>()) << "contour " << i;
+}
+
+// The SVG draws each curve as cubic Beziers within the tolerance the file states, a
+// tenth of the fit's or less so the export adds little to the fit's deviation. Checked
+// on every shared airfoil and glyph, each path against its curve as the project's reader
+// reads it from the JSON, both ways: points of the LA segments near the path, and points
+// of the cubics near the LA curve (a cubic could bulge away between the LA samples).
+// Both distances are to actual points of the other curve, so their refinement can only
+// overstate them.
+TEST_F(LafitCli, SvgBeziersStayWithinTheirStatedToleranceOfTheLaCurvesOnSharedProfilesAndGlyphs) {
+  std::vector<fs::path> files = test::filesOf(kData / "curves/airfoils", ".dat");
+  const std::vector<fs::path> glyphs = test::filesOf(kData / "curves/glyphs_dejavusans", ".csv");
+  ASSERT_GE(files.size(), 4u) << "airfoils missing from " << kData;
+  ASSERT_GE(glyphs.size(), 9u) << "glyphs missing from " << kData;
+  files.insert(files.end(), glyphs.begin(), glyphs.end());
+
+  auto check = [&](const fs::path& file) {  // a lambda, so that an ASSERT ends one file only
+    const std::string name = file.stem().string();
+    const Outcome r = lafit({"fit", file.string(), "-o", name + ".json", "--svg", name + ".svg"});
+    ASSERT_EQ(r.status, 0) << r;
+    const std::string svg = read(name + ".svg");
+    // Without --y-up nothing is mirrored: the paths are in the JSON's coordinates.
+    ASSERT_FALSE(contains(svg, "transform=")) << svg.substr(0, 600);
+    const double tolerance = test::statedBezierTolerance(svg);
+    ASSERT_GT(tolerance, 0.0) << "no stated tolerance:\n" << svg.substr(0, 600);
+    double fit_tolerance = INFINITY;  // the smallest of the document's curves
+    for (const json& curve : curvesOf(readJson(name + ".json")))
+      if (curve.contains("quality"))
+        fit_tolerance = std::min(fit_tolerance, curve.at("quality").at("tolerance").get<double>());
+    EXPECT_LE(tolerance, 0.1 * fit_tolerance);
+
+    std::vector<Curve> curves;
+    for (const CurveOrError& entry : readCurvesFile(at(name + ".json")))
+      if (entry.curve) curves.push_back(*entry.curve);
+    const std::vector<std::vector<CubicBezier>> paths = test::curvePathsOf(svg);
+    ASSERT_EQ(paths.size(), curves.size()) << "one path per fitted curve, in order";
+    double worst = 0.0;  // the largest distance either way, in stated tolerances
+    for (std::size_t i = 0; i < curves.size(); ++i) {
+      ASSERT_FALSE(paths[i].empty()) << "path " << i << " unreadable";
+      std::vector<LaSegment> segments;
+      for (const CurvePiece& piece : curves[i].pieces) {
+        segments.push_back(piece.segment);
+        for (const Vec2& q : piece.segment.sample(200).point)
+          worst = std::max(worst, test::distanceToBeziers(paths[i], q) / tolerance);
+      }
+      std::vector<Vec2> on_path;
+      for (const CubicBezier& b : paths[i])
+        for (int k = 0; k <= 32; ++k) on_path.push_back(b.point(k / 32.0));
+      for (double d : test::distances(segments, on_path)) worst = std::max(worst, d / tolerance);
+    }
+    EXPECT_LE(worst, 1.0) << "paths and LA curves up to " << worst << " stated tolerances (" << tolerance << ") apart";
+  };
+  for (const fs::path& file : files) {
+    SCOPED_TRACE(file.filename().string());
+    check(file);
+  }
 }
 
 // ------------------------------------------------------------------ fit: input formats

@@ -8,13 +8,13 @@
 
 #include <QComboBox>
 #include <QFile>
-#include <QRegularExpression>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
 #include "core/bezier_approximation.h"
 #include "tests/gui/window_test_support.h"
+#include "tests/svg_bezier_paths.h"
 
 namespace la::gui {
 namespace {
@@ -23,51 +23,6 @@ std::string readText(const QString& path) {
   QFile f(path);
   EXPECT_TRUE(f.open(QIODevice::ReadOnly)) << path.toStdString();
   return f.readAll().toStdString();
-}
-
-// The cubics of the first <path d="M x y C ..."/> in the curves group.
-std::vector<CubicBezier> cubicsOf(const std::string& svg) {
-  const std::size_t group = svg.find("<g id=\"curves\"");
-  EXPECT_NE(group, std::string::npos);
-  const std::size_t d = svg.find("<path d=\"", group) + 9;
-  std::istringstream in(svg.substr(d, svg.find('"', d) - d));
-  std::vector<CubicBezier> out;
-  std::string op;
-  Vec2 at;
-  in >> op;  // "Mx"
-  double x = std::stod(op.substr(1)), y;
-  in >> y;
-  at = Vec2(x, y);
-  while (in >> op && op[0] == 'C') {
-    double v[6];
-    v[0] = std::stod(op.substr(1));
-    for (int i = 1; i < 6; ++i) in >> v[i];
-    out.push_back({at, Vec2(v[0], v[1]), Vec2(v[2], v[3]), Vec2(v[4], v[5])});
-    at = out.back().p3;
-  }
-  return out;
-}
-
-double distanceToBeziers(const std::vector<CubicBezier>& path, const Vec2& p) {
-  double best = INFINITY;
-  for (const CubicBezier& b : path) {
-    // coarse samples, then golden-section refinement about the nearest
-    constexpr int kCoarse = 64;
-    int k_best = 0;
-    double d_best = INFINITY;
-    for (int k = 0; k <= kCoarse; ++k) {
-      const double d = (b.point(static_cast<double>(k) / kCoarse) - p).norm();
-      if (d < d_best) d_best = d, k_best = k;
-    }
-    double lo = std::max(0.0, (k_best - 1.0) / kCoarse), hi = std::min(1.0, (k_best + 1.0) / kCoarse);
-    for (int i = 0; i < 60; ++i) {
-      const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
-      if ((b.point(m1) - p).norm() < (b.point(m2) - p).norm()) hi = m2;
-      else lo = m1;
-    }
-    best = std::min({best, d_best, (b.point(0.5 * (lo + hi)) - p).norm()});
-  }
-  return best;
 }
 
 TEST_F(MainWindowTest, SvgOfAnAirfoilIsWithinTheStatedToleranceOfTheLaCurve) {
@@ -81,17 +36,18 @@ TEST_F(MainWindowTest, SvgOfAnAirfoilIsWithinTheStatedToleranceOfTheLaCurve) {
   EXPECT_NE(svg.find("inkscape:label=\"curves\""), std::string::npos);
 
   // the tolerance the file states: a tenth of the fit's
-  const QRegularExpressionMatch stated =
-      QRegularExpression("within ([0-9.eE+-]+) of the fitted curves").match(QString::fromStdString(svg));
-  ASSERT_TRUE(stated.hasMatch());
-  const double tolerance = stated.captured(1).toDouble();
+  const double tolerance = test::statedBezierTolerance(svg);
+  ASSERT_FALSE(std::isnan(tolerance));
   EXPECT_NEAR(tolerance, 0.1 * fit.tolerance, 1e-6 * fit.tolerance);
 
-  const std::vector<CubicBezier> path_cubics = cubicsOf(svg);
+  const std::vector<std::vector<CubicBezier>> paths = test::curvePathsOf(svg);
+  ASSERT_EQ(paths.size(), 1u);
+  const std::vector<CubicBezier>& path_cubics = paths[0];
   ASSERT_FALSE(path_cubics.empty());
   double worst = 0.0;
   for (const CurvePiece& piece : fit.curve.pieces)
-    for (const Vec2& q : piece.segment.sample(400).point) worst = std::max(worst, distanceToBeziers(path_cubics, q));
+    for (const Vec2& q : piece.segment.sample(400).point)
+      worst = std::max(worst, test::distanceToBeziers(path_cubics, q));
   // (the file's numbers have 10 significant digits: their rounding is far below this)
   EXPECT_LE(worst, tolerance) << "every point of the LA curve within the stated tolerance of the Bezier path";
 
