@@ -577,6 +577,11 @@ void Canvas::paintHint(QPainter& p) const {
   p.drawText(rect().adjusted(20, 20, -20, -20), Qt::AlignCenter | Qt::TextWordWrap, emptyCanvasHint());
 }
 
+void Canvas::paintRaw(QPainter& p, const std::vector<StrokeSample>& samples, const QColor& color) const {
+  if (m_layers.pressure_ink && hasPressure(samples)) p.fillPath(pressureInk(samples, m_view), color);
+  else drawDots(p, decimatedPoints(samples, m_view), color, 3.6);  // 3.6 px wide, ~2 per pixel
+}
+
 void Canvas::paintEvent(QPaintEvent*) {
   QPainter p(this);
   p.setRenderHint(QPainter::Antialiasing);
@@ -594,9 +599,7 @@ void Canvas::paintEvent(QPaintEvent*) {
     const double scale = viewScale();
     for (std::size_t k = 0; k < m_document->strokes().size(); ++k) {
       const DocumentStroke& s = m_document->strokes()[k];
-      if (m_layers.raw_points || !s.fit) {  // dots 3.6 px wide, thinned to ~2 per pixel
-        drawDots(p, decimatedPoints(s.raw.samples, m_view), kRawColor, 3.6);
-      }
+      if (m_layers.raw_points || !s.fit) paintRaw(p, s.raw.samples, kRawColor);
       if (s.fit) paintCurve(p, *s.fit, static_cast<int>(k), &m_drawings.of(s, scale, m_layers.comb_teeth));
     }
   }
@@ -605,10 +608,14 @@ void Canvas::paintEvent(QPaintEvent*) {
       paintConstruction(p, m_document->constructions()[k], static_cast<int>(k) == m_selected_construction);
   if (m_preview) paintCurve(p, *m_preview, -1);
   if (!m_current.samples.empty()) {  // the stroke in progress, as ink
-    QPolygonF ink;
-    for (const StrokeSample& q : m_current.samples) ink << toWidget(q.p);
-    p.setPen(QPen(kStrokeInkColor, 1.5));
-    p.drawPolyline(ink);
+    if (m_layers.pressure_ink && hasPressure(m_current.samples)) {
+      p.fillPath(pressureInk(m_current.samples, m_view), kStrokeInkColor);
+    } else {
+      QPolygonF ink;
+      for (const StrokeSample& q : m_current.samples) ink << toWidget(q.p);
+      p.setPen(QPen(kStrokeInkColor, 1.5));
+      p.drawPolyline(ink);
+    }
   }
   if (m_band) {
     p.setPen(QPen(QColor(60, 60, 60), 1.0, Qt::DashLine));

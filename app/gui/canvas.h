@@ -25,6 +25,7 @@ namespace la::gui {
 
 struct Layers {
   bool raw_points = true;
+  bool pressure_ink = true;  // a pen stroke drawn as ink whose width follows its pressure, not as dots
   bool spline = false;  // the smoothed B-spline (stage 2)
   bool curve = true;
   bool comb = true;
@@ -134,6 +135,9 @@ class Canvas : public QWidget {
   bool pansWithLeftButton(Qt::KeyboardModifiers modifiers) const;
   double sharedMaxCurvature() const;  // over every fitted stroke and construction
   void paintSelection(QPainter& p, const DocumentStroke& stroke) const;
+  /// A stroke's raw samples: ink whose width follows the pen (Layers::pressure_ink, where
+  /// they carry pressure), else dots.
+  void paintRaw(QPainter& p, const std::vector<StrokeSample>& samples, const QColor& color) const;
   void paintHint(QPainter& p) const;  // on the empty canvas: how to start
   void paintConstruction(QPainter& p, const Construction& c, bool selected) const;
   void paintComb(QPainter& p, const Comb& comb) const;

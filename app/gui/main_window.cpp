@@ -1231,6 +1231,7 @@ void MainWindow::buildMenus() {
     });
   };
   toggle("Raw points", &Layers::raw_points);
+  toggle("Ink from pen &pressure", &Layers::pressure_ink);
   toggle("Smoothed B-spline", &Layers::spline);
   toggle("LA curve", &Layers::curve);
   toggle("Curvature comb", &Layers::comb);

@@ -18,20 +18,98 @@ constexpr double kResampleZoomIn = 2.0, kResampleZoomOut = 8.0;
 
 }  // namespace
 
-QPolygonF decimatedPoints(const std::vector<StrokeSample>& points, const QTransform& view, double step) {
+std::vector<std::size_t> decimatedIndices(const std::vector<StrokeSample>& points, const QTransform& view,
+                                          double step) {
   // One point per cell of a `step` grid: a stroke of length l pixels keeps at most about
   // 2 l / step of them however densely or noisily it was sampled (a distance to the last
   // kept point alone lets noise through: 0.3 px jitter at 0.005 px spacing kept half).
-  QPolygonF out;
+  std::vector<std::size_t> kept;
   std::unordered_set<std::uint64_t> cells;
   for (std::size_t i = 0; i < points.size(); ++i) {
     const QPointF q = view.map(QPointF(points[i].p.x(), points[i].p.y()));
     if (!std::isfinite(q.x()) || !std::isfinite(q.y())) continue;
     const auto cx = static_cast<std::int64_t>(std::floor(q.x() / step)), cy = static_cast<std::int64_t>(std::floor(q.y() / step));
     const std::uint64_t cell = (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint32_t>(cy);
-    if (cells.insert(cell).second || i + 1 == points.size()) out << q;
+    if (cells.insert(cell).second || i + 1 == points.size()) kept.push_back(i);
   }
+  return kept;
+}
+
+QPolygonF decimatedPoints(const std::vector<StrokeSample>& points, const QTransform& view, double step) {
+  QPolygonF out;
+  for (std::size_t i : decimatedIndices(points, view, step)) out << view.map(QPointF(points[i].p.x(), points[i].p.y()));
   return out;
+}
+
+bool hasPressure(const std::vector<StrokeSample>& points) {
+  return std::any_of(points.begin(), points.end(),
+                     [](const StrokeSample& s) { return std::isfinite(s.pressure) && s.pressure > 0.0; });
+}
+
+std::vector<double> inkWidths(const std::vector<StrokeSample>& points, double width) {
+  double largest = 1.0;
+  for (const StrokeSample& s : points)
+    if (std::isfinite(s.pressure)) largest = std::max(largest, s.pressure);
+  std::vector<double> share(points.size(), NAN);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (std::isfinite(points[i].pressure)) share[i] = std::max(kInkLeastShare, std::min(1.0, points[i].pressure / largest));
+  // a sample without pressure (a dropped report) takes the mean of the share before it
+  // (already settled) and of the next sample that has one
+  for (std::size_t i = 0; i < share.size(); ++i) {
+    if (std::isfinite(share[i])) continue;
+    double sum = 0.0;
+    int n = 0;
+    if (i > 0) sum += share[i - 1], ++n;
+    for (std::size_t j = i + 1; j < share.size(); ++j)
+      if (std::isfinite(share[j])) {
+        sum += share[j], ++n;
+        break;
+      }
+    share[i] = n ? sum / n : 1.0;
+  }
+  for (double& s : share) s *= width;
+  return share;
+}
+
+QPainterPath pressureInk(const std::vector<StrokeSample>& points, const QTransform& view, double width) {
+  const std::vector<double> widths = inkWidths(points, width);
+  QPainterPath ink;
+  ink.setFillRule(Qt::WindingFill);
+  // every polygon counter-clockwise in widget coordinates (positive shoelace area), so
+  // the winding number is positive wherever any of them covers
+  auto addWound = [&ink](QPolygonF polygon) {
+    double area = 0.0;
+    for (qsizetype i = 0; i < polygon.size(); ++i) {
+      const QPointF& a = polygon[i];
+      const QPointF& b = polygon[(i + 1) % polygon.size()];
+      area += a.x() * b.y() - b.x() * a.y();
+    }
+    if (area < 0) std::reverse(polygon.begin(), polygon.end());
+    ink.addPolygon(polygon);
+    ink.closeSubpath();
+  };
+  constexpr int kDiscSides = 12;  // a disc of at most 4 px: a 12-gon is round to the eye
+  QPointF last;
+  double last_radius = 0.0;
+  bool first = true;
+  for (std::size_t i : decimatedIndices(points, view)) {
+    const QPointF q = view.map(QPointF(points[i].p.x(), points[i].p.y()));
+    const double radius = 0.5 * widths[i];
+    QPolygonF disc;
+    for (int k = 0; k < kDiscSides; ++k) {
+      const double a = 2.0 * M_PI * k / kDiscSides;
+      disc << q + radius * QPointF(std::cos(a), std::sin(a));
+    }
+    addWound(disc);
+    const QPointF d = q - last;
+    const double length = std::hypot(d.x(), d.y());
+    if (!first && length > 0.0) {
+      const QPointF n(-d.y() / length, d.x() / length);
+      addWound(QPolygonF{last + last_radius * n, q + radius * n, q - radius * n, last - last_radius * n});
+    }
+    last = q, last_radius = radius, first = false;
+  }
+  return ink;
 }
 
 void drawDots(QPainter& p, const QPolygonF& at, const QColor& color, double diameter) {

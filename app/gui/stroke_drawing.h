@@ -9,8 +9,12 @@
 // Level of detail: raw points are drawn at most ~2 per screen pixel along the stroke
 // (decimated), as round points in one call, so a 200,000-point stroke costs what the
 // pixels it covers cost.
+//
+// Ink from pen pressure: a drawn stroke can be shown as tablet drawing apps show it, its
+// width following the pen's pressure sample by sample (a view option, Layers::pressure_ink).
 
 #include <QColor>
+#include <QPainterPath>
 #include <QPainter>
 #include <QPointF>
 #include <QPolygonF>
@@ -33,6 +37,31 @@ inline constexpr double kRawPointStepPixels = 0.5;
 /// the way (each kept point at least `step` from the one kept before; the last always kept).
 QPolygonF decimatedPoints(const std::vector<StrokeSample>& points, const QTransform& view,
                           double step = kRawPointStepPixels);
+
+/// Indices of the points `decimatedPoints` keeps, in order.
+std::vector<std::size_t> decimatedIndices(const std::vector<StrokeSample>& points, const QTransform& view,
+                                          double step = kRawPointStepPixels);
+
+/// Ink at full pressure is this wide (pixels); the lightest touch keeps kInkLeastShare of it,
+/// so a stroke never vanishes where the pen barely touched.
+inline constexpr double kInkWidthPixels = 4.0;
+inline constexpr double kInkLeastShare = 0.15;
+
+/// Whether the samples carry pen pressure (some sample has a finite pressure above 0):
+/// a mouse stroke or an imported file without pressure has none.
+bool hasPressure(const std::vector<StrokeSample>& points);
+
+/// The ink's width (pixels) at each sample: `width` times its pressure, the pressure read
+/// against the stroke's largest where that exceeds 1 (device units rather than 0..1), at
+/// least kInkLeastShare of `width`; a sample without pressure gets its neighbours' mean share.
+std::vector<double> inkWidths(const std::vector<StrokeSample>& points, double width = kInkWidthPixels);
+
+/// The stroke mapped through `view` as one fillable outline whose width follows the pen
+/// pressure (inkWidths): a disc at every kept sample and the quad between consecutive ones,
+/// all wound the same way, so the winding fill is their union (no seams, no double-dark
+/// overlaps where the ink is translucent).
+QPainterPath pressureInk(const std::vector<StrokeSample>& points, const QTransform& view,
+                         double width = kInkWidthPixels);
 
 /// Round dots of `diameter` pixels centred on `at` (widget pixels), drawn in one call.
 void drawDots(QPainter& p, const QPolygonF& at, const QColor& color, double diameter);

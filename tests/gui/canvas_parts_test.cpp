@@ -247,5 +247,47 @@ TEST(StrokeDrawing, AMovedStrokeIsDrawnAnew) {
   EXPECT_NEAR(moved.segments.front().front().y(), start.y() + 50, 1e-9);
 }
 
+// Ink from pen pressure (issue 17, part 8): a straight stroke along x whose pressure rises
+// from 0 to 1 is as wide at each point as its pressure says, the lightest touch still shows,
+// pressure in device units reads against the stroke's largest, a dropped report takes its
+// neighbours' mean, and the outline is one union (filled wherever a disc or quad covers).
+TEST(PressureInk, TheWidthFollowsThePressure) {
+  std::vector<StrokeSample> line;
+  for (int i = 0; i <= 200; ++i) {
+    StrokeSample q;
+    q.p = Vec2(i, 0.0);
+    q.pressure = i / 200.0;
+    line.push_back(q);
+  }
+  ASSERT_TRUE(hasPressure(line));
+  const std::vector<double> widths = inkWidths(line, 4.0);
+  EXPECT_NEAR(widths[150], 3.0, 1e-12);
+  EXPECT_NEAR(widths[200], 4.0, 1e-12);
+  EXPECT_NEAR(widths[0], 4.0 * kInkLeastShare, 1e-12) << "a touch without pressure still leaves ink";
+
+  // the outline, 4x magnified so the widths read in whole pixels: at x = 150 it spans
+  // y in (-6, 6), at x = 50 (pressure 0.25) y in (-2, 2)
+  const QPainterPath ink = pressureInk(line, QTransform::fromScale(4.0, 4.0), 16.0);
+  EXPECT_TRUE(ink.contains(QPointF(600, 5.7)));
+  EXPECT_FALSE(ink.contains(QPointF(600, 6.3)));
+  EXPECT_TRUE(ink.contains(QPointF(600, -5.7)));
+  EXPECT_TRUE(ink.contains(QPointF(200, 1.8)));
+  EXPECT_FALSE(ink.contains(QPointF(200, 2.2)));
+  EXPECT_TRUE(ink.contains(QPointF(401, 0.0))) << "between samples the quads fill";
+
+  // device units (a tablet's 0..1024): read against the stroke's largest
+  std::vector<StrokeSample> device = line;
+  for (StrokeSample& q : device) q.pressure *= 1024.0;
+  EXPECT_NEAR(inkWidths(device, 4.0)[150], 3.0, 1e-12);
+  // a dropped report between 0.5 and 0.6: their mean
+  std::vector<StrokeSample> dropped(3, line[0]);
+  dropped[0].pressure = 0.5, dropped[1].pressure = NAN, dropped[2].pressure = 0.6;
+  EXPECT_NEAR(inkWidths(dropped, 1.0)[1], 0.55, 1e-12);
+
+  // a mouse stroke has no pressure
+  for (StrokeSample& q : line) q.pressure = NAN;
+  EXPECT_FALSE(hasPressure(line));
+}
+
 }  // namespace
 }  // namespace la::gui

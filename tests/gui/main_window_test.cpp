@@ -26,6 +26,7 @@
 
 #include "app/gui/canvas.h"
 #include "app/gui/chart.h"
+#include "app/gui/curvature_plot.h"
 #include "app/gui/main_window.h"
 #include "app/gui/parameter_panel.h"
 #include "tests/gui/window_test_support.h"
@@ -72,9 +73,7 @@ TEST_F(MainWindowTest, TypedToleranceAppliesOnEnterAsOneUndoStep) {
 // first, Discard goes on. The crash-recovery marker goes only after a clean save or an
 // explicit discard.
 TEST_F(MainWindowTest, NewAndCloseAskBeforeUnsavedWorkIsLost) {
-  QAction* new_sketch = nullptr;
-  for (QAction* a : window->findChildren<QAction*>())
-    if (a->text() == "&New") new_sketch = a;
+  QAction* new_sketch = actionNamed(*window, "&New");
   ASSERT_NE(new_sketch, nullptr);
   window->offerRecovery();  // (lays the crash-recovery marker, as at start)
   const QString marker = window->autosavePath() + ".running";
@@ -135,9 +134,7 @@ TEST_F(MainWindowTest, DeleteRemovesTheSelectedStrokeUndoably) {
   ASSERT_EQ(window->document().strokes().size(), 2u);
   const FitResult first = *window->document().strokes()[0].fit;
   const std::uint64_t second = window->document().strokes()[1].id;
-  QAction* remove = nullptr;
-  for (QAction* a : window->findChildren<QAction*>())
-    if (a->text() == "&Delete") remove = a;
+  QAction* remove = actionNamed(*window, "&Delete");
   ASSERT_NE(remove, nullptr);
   EXPECT_TRUE(remove->shortcuts().contains(QKeySequence(QKeySequence::Delete)));
   remove->trigger();  // nothing selected: nothing goes
@@ -627,7 +624,12 @@ TEST_F(MainWindowTest, ScreenshotWithFittedCurveCombAndPlot) {
     QTest::mouseClick(window->canvas(), Qt::RightButton, Qt::NoModifier,
                       window->canvas()->toWidget(seg.position(0.5 * seg.length())).toPoint());
   }
+  // the curvature plot of both strokes on one axis (the README shows two curves compared)
+  auto* plot = window->findChild<CurvaturePlot*>();
+  ASSERT_NE(plot, nullptr);
+  plot->setScope(CurvaturePlot::Scope::kAllVisible);
   QApplication::processEvents();
+  EXPECT_EQ(plot->curveLengths().size(), 2u);
   const QImage shot = window->grab().toImage();
   ASSERT_FALSE(shot.isNull());
   const QString path = QString(LAFAIR_BINARY_DIR) + "/lafair-window.png";

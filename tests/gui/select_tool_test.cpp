@@ -38,12 +38,6 @@ QPoint onStroke(MainWindow& w, std::size_t k) {
   return w.canvas()->toWidget(seg.position(0.5 * seg.length())).toPoint();
 }
 
-QAction* actionNamed(MainWindow& w, const QString& text) {
-  for (QAction* a : w.findChildren<QAction*>())
-    if (a->text() == text) return a;
-  return nullptr;
-}
-
 class SelectToolTest : public MainWindowTest {
  protected:
   void SetUp() override {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <QAction>
 #include <QApplication>
 #include <QMouseEvent>
 #include <QPointingDevice>
@@ -38,16 +39,19 @@ inline void drawWithMouse(QWidget* canvas, const std::vector<QPoint>& pts) {
   QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, pts.back());
 }
 
+// One tablet event of the pen at `pos` (widget pixels) with `pressure` (0..1).
+inline void sendPen(QWidget* canvas, QEvent::Type type, QPointF pos, double pressure) {
+  QTabletEvent e(type, QPointingDevice::primaryPointingDevice(), pos, canvas->mapToGlobal(pos), pressure, 0.0f, 0.0f,
+                 0.0f, 0.0f, 0.0f, Qt::NoModifier, type == QEvent::TabletRelease ? Qt::NoButton : Qt::LeftButton,
+                 Qt::LeftButton);
+  QApplication::sendEvent(canvas, &e);
+}
+
+// A pen stroke whose pressure rises from 0.3 to 0.7.
 inline void drawWithPen(QWidget* canvas, const std::vector<QPoint>& pts) {
-  const QPointingDevice* pen = QPointingDevice::primaryPointingDevice();
-  auto send = [&](QEvent::Type type, QPointF pos, double pressure) {
-    QTabletEvent e(type, pen, pos, canvas->mapToGlobal(pos), pressure, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
-                   Qt::NoModifier, type == QEvent::TabletRelease ? Qt::NoButton : Qt::LeftButton, Qt::LeftButton);
-    QApplication::sendEvent(canvas, &e);
-  };
-  send(QEvent::TabletPress, pts.front(), 0.3);
-  for (std::size_t i = 1; i + 1 < pts.size(); ++i) send(QEvent::TabletMove, pts[i], 0.3 + 0.4 * i / pts.size());
-  send(QEvent::TabletRelease, pts.back(), 0.0);
+  sendPen(canvas, QEvent::TabletPress, pts.front(), 0.3);
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) sendPen(canvas, QEvent::TabletMove, pts[i], 0.3 + 0.4 * i / pts.size());
+  sendPen(canvas, QEvent::TabletRelease, pts.back(), 0.0);
 }
 
 // A drag with the left button from `from` to `to` in `steps` moves, as a hand makes it.
@@ -60,6 +64,13 @@ inline void dragOnCanvas(QWidget* canvas, QPoint from, QPoint to, Qt::KeyboardMo
     QApplication::sendEvent(canvas, &move);
   }
   QTest::mouseRelease(canvas, Qt::LeftButton, modifiers, to);
+}
+
+// The window's action with this text (mnemonic ampersands included), or null.
+inline QAction* actionNamed(QWidget& w, const QString& text) {
+  for (QAction* a : w.findChildren<QAction*>())
+    if (a->text() == text) return a;
+  return nullptr;
 }
 
 class MainWindowTest : public ::testing::Test {
