@@ -74,32 +74,32 @@ inline std::vector<Vec2> sampleChain(const std::vector<LaSegment>& chain, int pe
   return points;
 }
 
-/// Distance from each point to the chain, independent of the chain fit: the nearest
-/// vertex of a dense polyline (LaSegment::sample), then Newton on the closest-point
-/// condition with LaSegment's own position, tangent and curvature (adaptive quadrature).
+/// Distance from each point to the chain, independent of the chain fit: on each segment
+/// the nearest vertex of a dense polyline (LaSegment::sample), then Newton on the
+/// closest-point condition with LaSegment's own position, tangent and curvature (adaptive
+/// quadrature); the nearest of the segments' answers. (Every segment is refined: a point
+/// just past a joint has its nearest vertex at the joint, where the segment that ends
+/// there can only clamp.)
 inline std::vector<double> distances(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points) {
-  struct Node {
-    Vec2 p;
-    std::size_t segment;
-    double s;
-  };
-  std::vector<Node> nodes;
-  for (std::size_t i = 0; i < chain.size(); ++i) {
-    const CurveSamples smp = chain[i].sample(2000);
-    for (std::size_t k = 0; k < smp.size(); ++k) nodes.push_back({smp.point[k], i, smp.s[k]});
-  }
+  std::vector<CurveSamples> samples;
+  for (const LaSegment& seg : chain) samples.push_back(seg.sample(2000));
   std::vector<double> out;
   for (const Vec2& p : points) {
-    const Node* best = &nodes.front();
-    for (const Node& n : nodes)
-      if ((n.p - p).squaredNorm() < (best->p - p).squaredNorm()) best = &n;
-    const LaSegment& seg = chain[best->segment];
-    double s = best->s;
-    for (int it = 0; it < 8; ++it) {
-      const Vec2 d = p - seg.position(s), t = seg.tangent(s), n(-t.y(), t.x());
-      s = std::clamp(s + t.dot(d) / (1.0 - seg.kappa(s) * n.dot(d)), 0.0, seg.length());
+    double best = INFINITY;
+    for (std::size_t i = 0; i < chain.size(); ++i) {
+      const CurveSamples& smp = samples[i];
+      std::size_t nearest = 0;
+      for (std::size_t k = 1; k < smp.size(); ++k)
+        if ((smp.point[k] - p).squaredNorm() < (smp.point[nearest] - p).squaredNorm()) nearest = k;
+      const LaSegment& seg = chain[i];
+      double s = smp.s[nearest];
+      for (int it = 0; it < 8; ++it) {
+        const Vec2 d = p - seg.position(s), t = seg.tangent(s), n(-t.y(), t.x());
+        s = std::clamp(s + t.dot(d) / (1.0 - seg.kappa(s) * n.dot(d)), 0.0, seg.length());
+      }
+      best = std::min({best, (p - seg.position(s)).norm(), (p - smp.point[nearest]).norm()});
     }
-    out.push_back((p - seg.position(s)).norm());
+    out.push_back(best);
   }
   return out;
 }
