@@ -126,6 +126,7 @@ TEST_F(MainWindowTest, CombScaleIsPerCurveOrSharedByAllCurves) {
   EXPECT_TRUE(canvas->layers().comb_shared) << "not live";
   EXPECT_DOUBLE_EQ(canvas->combOf(0).gain, canvas->combOf(1).gain) << "shared: one gain";
   EXPECT_NEAR(canvas->combOf(1).gain * k1 * canvas->view().m11(), canvas->layers().comb_scale * std::min(canvas->width(), canvas->height()), 1e-6);
+  saveScreenshot(*window, "comb-shared-scale");
   per_curve->click();
   EXPECT_FALSE(canvas->layers().comb_shared);
 }

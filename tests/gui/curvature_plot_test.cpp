@@ -73,6 +73,7 @@ TEST_F(MainWindowTest, CurvaturePlotFollowsTheSelectionAndReadsThreeWays) {
   ASSERT_EQ(mode->count(), 3);
   for (int m = 0; m < 3; ++m) {
     mode->setCurrentIndex(m);
+    if (plot->mode() == CurvaturePlot::Mode::kLogAbsCurvature) saveScreenshot(*window, "curvature-plot-log");
     int checked = 0;
     for (const auto& [s, y] : plot->afterPoints()) {
       const double k = curvatureAt(first, s);

@@ -82,6 +82,7 @@ TEST_F(ImportWindowTest, AnAirfoilFittedToAPixelViewIsLargeAndOneUndoStep) {
     ASSERT_LT((raw[i].p - (scale * file.samples[i].p + (placed.lo - scale * original.lo))).norm(), 1e-9 * scale) << i;
   EXPECT_TRUE(window->document().strokes()[1].raw.profile);
   EXPECT_EQ(lastFit().quality.corners, 1) << "scaled, it is still a profile with its one corner";
+  saveScreenshot(*window, "import-airfoil-fit-to-view");
 
   EXPECT_EQ(window->undoStack()->count(), steps + 1) << "one undo step";
   window->undoStack()->undo();

@@ -60,6 +60,7 @@ TEST_F(MainWindowTest, TypedToleranceAppliesOnEnterAsOneUndoStep) {
   QTest::keyClick(tolerance, Qt::Key_Return);
   EXPECT_NEAR(window->document().options().tolerance_fraction, 0.0125, 1e-12);
   EXPECT_EQ(window->undoStack()->count(), steps + 1);
+  saveScreenshot(*window, "tolerance-typed-empty-canvas-hint");
   QAction* redo = nullptr;
   for (QAction* a : window->findChildren<QAction*>())
     if (a->text().contains("Redo")) redo = a;
@@ -606,6 +607,7 @@ TEST_F(MainWindowTest, AHugeStrokeIsFittedOffTheUiThread) {
   const FitResult& fit = lastFit();
   EXPECT_LT(fit.quality.g2_gap, 1e-6);
   EXPECT_FALSE(window->document().strokes().front().provisional);
+  saveScreenshot(*window, "huge-stroke-fitted");
   window->undoStack()->undo();
   EXPECT_TRUE(window->document().strokes().empty());
   window->undoStack()->redo();

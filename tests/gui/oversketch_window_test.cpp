@@ -84,10 +84,12 @@ TEST_F(OversketchWindowTest, AStrokeOverTheMiddleReplacesItAsOneUndoStep) {
   const DocumentStroke before = window->document().strokes().front();
   ASSERT_TRUE(before.fit);
   const int steps = window->undoStack()->count();
+  saveScreenshot(*window, "oversketch-before");
 
   const std::vector<QPoint> fresh = overWave(200, 450, 2.0, 40.0);
   drawWithMouse(window->canvas(), fresh);
   const FitResult& fit = lastFit();
+  saveScreenshot(*window, "oversketch-after");
   ASSERT_EQ(window->document().strokes().size(), 1u) << "the stroke was oversketched, not added to";
   EXPECT_EQ(window->undoStack()->count(), steps + 1) << "one undo step";
   const std::vector<StrokeSample>& raw = window->document().strokes().front().raw.samples;

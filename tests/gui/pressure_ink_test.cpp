@@ -44,6 +44,7 @@ TEST_F(MainWindowTest, InkWidthFollowsThePenPressure) {
   const double light = inkAcross(drawn, 100, 60), heavy = inkAcross(drawn, 500, 60);
   EXPECT_NEAR(light, 0.7, 0.2);
   EXPECT_NEAR(heavy, 3.7, 0.3);
+  saveScreenshot(*window, "pressure-ink");
 
   ink->trigger();  // off: one width along the stroke
   drawn = canvas->grab().toImage();

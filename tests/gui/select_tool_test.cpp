@@ -167,6 +167,7 @@ TEST_F(SelectToolTest, ClickShiftClickRubberBandSelectAllAndClear) {
   EXPECT_EQ(window->selectedStrokes(), Indices({0}));
   dragOnCanvas(canvas, QPoint(5, 5), QPoint(canvas->width() - 5, canvas->height() - 5));
   EXPECT_EQ(window->selectedStrokes(), Indices({0, 1}));
+  saveScreenshot(*window, "select-two-strokes");
   const int steps = window->undoStack()->count();
 
   key(Qt::Key_Escape);

@@ -6,6 +6,8 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QDir>
+#include <QImage>
 #include <QMouseEvent>
 #include <QPointingDevice>
 #include <QTabletEvent>
@@ -71,6 +73,15 @@ inline QAction* actionNamed(QWidget& w, const QString& text) {
   for (QAction* a : w.findChildren<QAction*>())
     if (a->text() == text) return a;
   return nullptr;
+}
+
+// The whole window as it is, saved as <build>/screenshots/<name>.png: what a test checked,
+// for a person to look at (the issues' closing notes point at them).
+inline void saveScreenshot(QWidget& window, const QString& name) {
+  QApplication::processEvents();
+  const QString folder = QString(LAFAIR_BINARY_DIR) + "/screenshots";
+  QDir().mkpath(folder);
+  EXPECT_TRUE(window.grab().toImage().save(folder + "/" + name + ".png")) << name.toStdString();
 }
 
 class MainWindowTest : public ::testing::Test {
