@@ -55,7 +55,9 @@ TEST(CurveMarkers, OneSymbolPerMeaningAtEveryJoint) {
   }
   for (MarkerKind a : kMarkerKinds)
     for (MarkerKind b : kMarkerKinds)
-      if (a != b) EXPECT_NE(markerName(a), markerName(b));
+      if (a != b) {
+        EXPECT_NE(markerName(a), markerName(b));
+      }
 }
 
 TEST(CurvatureComb, TeethEvenInArcLengthAcrossJointsAndTheEnvelopeJumpsAtACorner) {
@@ -120,7 +122,9 @@ TEST(TranslateStroke, MovesEveryPositionOfTheFitAndNothingElse) {
     const DocumentStroke before = doc.strokes()[0];
     ASSERT_EQ(before.fit->curve.closed, closed);
     ASSERT_FALSE(before.fit->splines.empty());
-    if (closed) ASSERT_TRUE(before.fit->splines[0].isPeriodic()) << "the closed case should test a periodic spline";
+    if (closed) {
+      ASSERT_TRUE(before.fit->splines[0].isPeriodic()) << "the closed case should test a periodic spline";
+    }
     const Vec2 d(-31.5, 270.25);
     doc.translateStrokes({0}, d);
     const DocumentStroke& after = doc.strokes()[0];

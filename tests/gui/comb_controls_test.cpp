@@ -82,7 +82,9 @@ TEST_F(MainWindowTest, CombControlsAreLiveAndTeethEvenAlongTheArc) {
     const Vec2 tooth = comb.tip[k] - comb.base[k];
     EXPECT_NEAR(tooth.norm(), comb.gain * std::abs(at.kappa), 1e-9 * comb.gain * fit.quality.max_abs_kappa) << "tooth " << k;
     EXPECT_LT(std::abs(tooth.dot(at.tangent)), 1e-9 * (1 + tooth.norm())) << "tooth " << k << " not normal to the curve";
-    if (std::abs(at.kappa) > 1e-9) EXPECT_LT(tooth.dot(Vec2(-at.tangent.y(), at.tangent.x())) * at.kappa, 0.0) << "points inward";
+    if (std::abs(at.kappa) > 1e-9) {
+      EXPECT_LT(tooth.dot(Vec2(-at.tangent.y(), at.tangent.x())) * at.kappa, 0.0) << "points inward";
+    }
   }
   // the longest tooth is the scale's share of the view's shorter side
   const double side = std::min(canvas->width(), canvas->height());
