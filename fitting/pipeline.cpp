@@ -24,6 +24,13 @@ constexpr double kOnTheBound = 0.999;
 // A part whose chain with a joint on the bound misses by more than this many tolerances
 // misses for another reason (a scribble's): it is not fitted again without the bound.
 constexpr double kBoundsMiss = 4.0;
+// A curvature above this many times 1 / tolerance bends tighter than the tolerance (the
+// bound itself, to rounding, does not).
+constexpr double kTighterThanTolerance = 1.0 + 1e-6;
+// Rounds of corners put at bends tighter than the tolerance (see fitStroke).
+constexpr int kTightBendRounds = 2;
+// A corner put at a tight bend goes to the point turning most this many points about it.
+constexpr std::size_t kCornerReach = 2;
 
 // A straight stroke: its lines, a corner of pi where it turns back.
 void fitStraight(FitResult& r) {
@@ -76,13 +83,72 @@ double hookTolerance(const Stroke& stroke, const FitOptions& options) {
   return lo.x() <= hi.x() ? options.tolerance_fraction * (hi - lo).norm() : 0.0;
 }
 
+// Whether some segment bends tighter than the tolerance (an LA segment's curvature is
+// monotone: its largest is at an end).
+bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) {
+  return std::any_of(segments.begin(), segments.end(), [&](const LaSegment& s) {
+    return std::max(std::abs(s.kappaStart()), std::abs(s.kappaEnd())) * tolerance > kTighterThanTolerance;
+  });
+}
+
+// Where the curve bends tighter than the tolerance: at a G2 joint, the joint; towards a
+// corner or the curve's end, where the segment's |kappa| reaches 1 / tolerance (the side
+// starts to curl into the corner there, which then belongs there).
+std::vector<Vec2> tightBends(const FitResult& r) {
+  std::vector<Vec2> at;
+  const std::vector<CurvePiece>& pieces = r.curve.pieces;
+  const double limit = 1.0 / r.tolerance;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const LaSegment& seg = pieces[i].segment;
+    const bool at_end = std::abs(seg.kappaEnd()) >= std::abs(seg.kappaStart());
+    if (!(std::max(std::abs(seg.kappaStart()), std::abs(seg.kappaEnd())) * r.tolerance > kTighterThanTolerance)) continue;
+    const bool last = i + 1 == pieces.size();
+    const bool joint = at_end ? (!last || r.curve.closed) && !pieces[last ? 0 : i + 1].corner
+                              : (i > 0 || r.curve.closed) && !pieces[i].corner;
+    if (joint) {
+      at.push_back(at_end ? seg.end() : seg.start());
+      continue;
+    }
+    // (|kappa| is monotone along the segment: bisection for where it reaches the limit)
+    double lo = 0.0, hi = seg.length();  // loose at lo, tight at hi (towards the tight end)
+    auto tight = [&](double s) { return std::abs(seg.kappa(at_end ? s : seg.length() - s)) > limit; };
+    if (tight(lo)) hi = lo;
+    for (int k = 0; k < 50 && hi > lo; ++k) (tight(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+    at.push_back(seg.position(at_end ? hi : seg.length() - hi));
+  }
+  return at;
+}
+
+// The point of `stroke` where it turns most (by the angle between its steps in and out)
+// among the point nearest `q` and kCornerReach points either side of it.
+std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
+  const std::vector<Vec2>& p = stroke.points;
+  const std::size_t n = p.size();
+  const auto nearest = static_cast<std::size_t>(std::min_element(p.begin(), p.end(), [&](const Vec2& a, const Vec2& b) {
+                                                  return (a - q).squaredNorm() < (b - q).squaredNorm();
+                                                }) - p.begin());
+  std::size_t best = nearest;
+  double most = -1.0;
+  for (std::size_t k = nearest + n - kCornerReach; k <= nearest + n + kCornerReach; ++k) {
+    const std::size_t i = k % n;
+    if (!stroke.closed && (k < n + 1 || k + 2 > 2 * n)) continue;  // (an open stroke's ends turn nowhere)
+    const Vec2 in = p[i] - p[(i + n - 1) % n], out = p[(i + 1) % n] - p[i];
+    const double turn = std::abs(std::atan2(cross(in, out), in.dot(out)));
+    if (turn > most) most = turn, best = i;
+  }
+  return best;
+}
+
 // The whole pipeline, stage 7 bending no tighter than the tolerance where
-// `bound_radius`; the time budget counts from `start`.
+// `bound_radius`, with corners also where the points turn most near each of `corners_at`
+// (cornerNear); the time budget counts from `start`.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, bool bound_radius,
-                  Clock::time_point start) {
+                  Clock::time_point start, const std::vector<Vec2>& corners_at = {}) {
   FitResult r;
   const auto cleanup_start = Clock::now();  // (a rerun's start is the first run's)
   r.cleaned = cleanStroke(stroke, options.cleanup, hook_tolerance);
+  if (!r.cleaned.straight)
+    for (const Vec2& q : corners_at) addCorner(r.cleaned, cornerNear(r.cleaned, q));
   r.timings.cleanup_ms = msSince(cleanup_start);
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
@@ -239,8 +305,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     }
     // (a merge is tried from stage 7's own start only: the other starts rescue a part
     // that misses, which the two parts apart do not need)
+    // (nor where the two as one bend tighter than the tolerance: that is a corner)
     PartFit smooth = fitOne(merged, false);
-    if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance)) {
+    if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance) || bendsTighterThan(smooth.segments, r.tolerance)) {
       ++k;
       continue;
     }
@@ -332,10 +399,29 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
   if (polishing && bounded && !r.cleaned.straight && !r.out_of_time && !r.over_polish_limit && misses(r)) {
     FitResult free = fitOnce(stroke, options, hook_tolerance, false, start);
-    if (!misses(free)) {
-      free.timings.total_ms = msSince(start);
-      return free;
-    }
+    if (!misses(free)) r = std::move(free);
+  }
+  // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
+  // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
+  // again with the bound, in about the time the fit took so far: kept where it bends less
+  // tightly and keeps the tolerance (or misses it by no more).
+  std::vector<Vec2> corners_at;
+  for (int round = 0; round < kTightBendRounds && polishing && !r.cleaned.straight && !r.out_of_time &&
+                      !r.over_polish_limit && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance;
+       ++round) {
+    const std::vector<Vec2> more = tightBends(r);
+    CleanStroke with = r.cleaned;  // (where no corner can go, no fit is tried)
+    if (std::none_of(more.begin(), more.end(), [&](const Vec2& q) { return addCorner(with, cornerNear(with, q)); })) break;
+    corners_at.insert(corners_at.end(), more.begin(), more.end());
+    FitOptions bounded_time = options;
+    const double spent = msSince(start);
+    bounded_time.time_budget_ms = options.time_budget_ms > 0.0 ? std::min(options.time_budget_ms, 2.0 * spent) : 2.0 * spent;
+    FitResult cornered = fitOnce(stroke, bounded_time, hook_tolerance, true, start, corners_at);
+    if (cornered.out_of_time || !cornered.g2.usable() ||
+        cornered.quality.max_dev > std::max(cornered.tolerance, r.quality.max_dev) ||
+        !(cornered.quality.max_abs_kappa < r.quality.max_abs_kappa))
+      break;
+    r = std::move(cornered);
   }
   r.timings.total_ms = msSince(start);
   return r;

@@ -649,6 +649,16 @@ bool collinear(const std::vector<Vec2>& p) {
   return p.size() < 3 || lineDeviation(p) < kCollinearTolerance * boundingBoxDiagonal(p);
 }
 
+// A closed stroke's points (and their sources and corners) rotated to start at points[shift].
+void startClosedAt(CleanStroke& stroke, std::size_t shift) {
+  const std::size_t n = stroke.points.size();
+  const auto offset = static_cast<std::ptrdiff_t>(shift);
+  std::rotate(stroke.points.begin(), stroke.points.begin() + offset, stroke.points.end());
+  std::rotate(stroke.source.begin(), stroke.source.begin() + offset, stroke.source.end());
+  for (std::size_t& c : stroke.corners) c = (c + n - shift) % n;
+  std::sort(stroke.corners.begin(), stroke.corners.end());
+}
+
 }  // namespace
 
 CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double tolerance) {
@@ -770,13 +780,22 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double
     for (std::size_t c : result.corners) {
       if (std::min(c, n - c) < std::min(shift, n - shift)) shift = c;
     }
-    const auto offset = static_cast<std::ptrdiff_t>(shift);
-    std::rotate(result.points.begin(), result.points.begin() + offset, result.points.end());
-    std::rotate(result.source.begin(), result.source.begin() + offset, result.source.end());
-    for (std::size_t& c : result.corners) c = (c + n - shift) % n;
-    std::sort(result.corners.begin(), result.corners.end());
+    startClosedAt(result, shift);
   }
   return result;
+}
+
+bool addCorner(CleanStroke& stroke, std::size_t index) {
+  const std::size_t n = stroke.points.size();
+  constexpr std::size_t kApart = 2;  // (a part between two corners has 3 points or more)
+  if (index >= n || (!stroke.closed && (index < kApart || index + kApart >= n))) return false;
+  for (std::size_t c : stroke.corners) {
+    const std::size_t apart = c > index ? c - index : index - c;
+    if (std::min(apart, stroke.closed ? n - apart : apart) < kApart) return false;
+  }
+  stroke.corners.insert(std::upper_bound(stroke.corners.begin(), stroke.corners.end(), index), index);
+  if (stroke.closed) startClosedAt(stroke, stroke.corners.front());
+  return true;
 }
 
 const char* toString(LeftOutReason reason) {

@@ -814,4 +814,31 @@ TEST(CleanStrokeRealData, EveryRealStrokeCleansOrSaysWhy) {
 }
 
 }  // namespace
+// A corner added by hand (the fit puts one at a bend tighter than the tolerance): kept
+// two points from the ends and from every corner; a closed stroke starts at its first
+// corner, its points and their sources turned alike.
+TEST(CleanStroke, AnAddedCornerKeepsItsDistanceAndAClosedStrokeStartsAtItsFirstCorner) {
+  CleanStroke open;
+  for (int i = 0; i < 10; ++i) open.points.emplace_back(i, 0.0), open.source.push_back(static_cast<std::size_t>(i));
+  open.corners = {5};
+  EXPECT_FALSE(addCorner(open, 1)) << "too near the start";
+  EXPECT_FALSE(addCorner(open, 8)) << "too near the end";
+  EXPECT_FALSE(addCorner(open, 4)) << "beside a corner";
+  EXPECT_TRUE(addCorner(open, 3));
+  EXPECT_EQ(open.corners, (std::vector<std::size_t>{3, 5}));
+
+  CleanStroke closed = open;
+  closed.closed = true;
+  closed.corners.clear();
+  EXPECT_TRUE(addCorner(closed, 6));
+  EXPECT_EQ(closed.corners, (std::vector<std::size_t>{0}));
+  EXPECT_EQ(closed.points.front(), Vec2(6, 0)) << "the closed stroke starts at its corner";
+  EXPECT_EQ(closed.source.front(), 6u);
+  EXPECT_EQ(closed.points.back(), Vec2(5, 0));
+  EXPECT_FALSE(addCorner(closed, 9)) << "beside the corner across the seam";
+  EXPECT_TRUE(addCorner(closed, 4));  // (the stroke's point 0, now at 4)
+  EXPECT_EQ(closed.corners, (std::vector<std::size_t>{0, 4}));
+  EXPECT_EQ(closed.points[4], Vec2(0, 0));
+}
+
 }  // namespace la
