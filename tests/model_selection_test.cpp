@@ -334,4 +334,18 @@ TEST(SelectChain, SplitsRenumberTheCorners) {
 }
 
 }  // namespace
+// A start the chain fit refuses (here: feet that do not match the points) is returned as
+// refused, unedited: its edits would have no feet to go by (the window screen read past
+// an empty foot list on a noisy logarithmic spiral of four turns, and crashed).
+TEST(SelectChain, ARefusedStartIsReturnedUnedited) {
+  std::vector<LaSegment> start = hookTruth();
+  while (start.size() < 6) start = cutAt(start, start.size() - 1, 0.5 * start.back().length());
+  ASSERT_GE(start.size(), 6u) << "a chain long enough for the window screen";
+  const std::vector<Vec2> points = sampleChain(hookTruth(), 80, kSigma, 5);
+  const std::vector<ChainFoot> wrong_feet(points.size() - 1, {0, 0.5});
+  const SelectionResult r = selectChain(start, points, wrong_feet, selection());
+  EXPECT_EQ(r.fit.report.status, SolveStatus::kBadInput) << r.fit.report.message;
+  EXPECT_EQ(r.collapses + r.merges + r.straightenings + r.splits, 0);
+}
+
 }  // namespace la
