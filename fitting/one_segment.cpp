@@ -1,5 +1,7 @@
 #include "fitting/one_segment.h"
 
+#include <ceres/ceres.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -12,6 +14,58 @@
 
 namespace la {
 namespace {
+
+// The chords' turning along the points (`turn[k]` from the profile's first arc length
+// s[k = 0] to s[k]) against an LA segment's of one alpha and the points' length; the
+// unknowns are log |kappa| at its ends (of the turning's sign). Ceres differentiates it
+// numerically: the segment's turning is a closed form, cheap to evaluate.
+struct TurningProfile {
+  double alpha, length, sign;
+  const std::vector<double>* s;
+  const std::vector<double>* turn;
+  bool operator()(const double* y, double* residual) const {
+    try {
+      const LaSegment seg(alpha, length, Vec2::Zero(), 0.0, sign * std::exp(y[0]), sign * std::exp(y[1]));
+      const double first = seg.theta((*s)[0]);
+      for (std::size_t k = 0; k < s->size(); ++k) residual[k] = seg.theta((*s)[k]) - first - (*turn)[k];
+      return std::all_of(residual, residual + s->size(), [](double r) { return std::isfinite(r); });
+    } catch (const std::invalid_argument&) {
+      return false;  // (a step to a curvature the law has no segment for: Ceres steps shorter)
+    }
+  }
+};
+
+// The end curvatures that make the segment of `alpha` and `length` turn as the chords
+// do (least squares over the profile, from `k0`, `k1`), and the profile's sum of squares
+// left; nullopt where Ceres finds no usable solution.
+std::optional<std::pair<LaSegment, double>> profileSegment(double alpha, double length, double k0, double k1,
+                                                           const std::vector<double>& s, const std::vector<double>& turn) {
+  const double sign = k0 < 0.0 ? -1.0 : 1.0;
+  double y[2] = {std::log(std::abs(k0)), std::log(std::abs(k1))};
+  ceres::Problem problem;
+  problem.AddResidualBlock(new ceres::NumericDiffCostFunction<TurningProfile, ceres::CENTRAL, ceres::DYNAMIC, 2>(
+                               new TurningProfile{alpha, length, sign, &s, &turn}, ceres::TAKE_OWNERSHIP,
+                               static_cast<int>(s.size())),
+                           nullptr, y);
+  // (a curvature whose radius is 1e-4 to 1e4 times the length: beyond, no drawn spiral)
+  for (int i = 0; i < 2; ++i) {
+    problem.SetParameterLowerBound(y, i, std::log(1e-4 / length));
+    problem.SetParameterUpperBound(y, i, std::log(1e4 / length));
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 25;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  if (!summary.IsSolutionUsable()) return std::nullopt;
+  try {
+    return std::pair{LaSegment(alpha, length, Vec2::Zero(), 0.0, sign * std::exp(y[0]), sign * std::exp(y[1])),
+                     summary.final_cost};
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
 
 // The segment read off the points: its total turning (the chords of neighbours `span`
 // apart followed along it, `span` long enough that noise cannot turn a chord by much),
@@ -27,6 +81,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   constexpr int kOneSegmentIterations = 40;
   constexpr std::size_t kOneSegmentStarts = 3;
   constexpr std::size_t kCurvatureWindows = 8;  // for the test of monotone curvature
+  constexpr std::size_t kProfileSamples = 24;   // arc lengths the starts' turning is fitted at
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
   const double step = medianStep(p);
@@ -50,9 +105,11 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   if (!(length > 0.0) || !(std::abs(turning) > so.max_turning)) return std::nullopt;
   const double sign = turning < 0.0 ? -1.0 : 1.0;
   // (a turn back from the furthest direction so far by more than the noise can turn a
-  // chord, sqrt(2) noise / chord per chord, at about 8 sigmas: an inflection inside; a
-  // smaller one that is real makes the fit miss)
-  const double slack = 12.0 * noise / (span * step);
+  // chord, sqrt(2) noise / chord per chord, at about 11 sigmas: an inflection inside; a
+  // smaller one that is real makes the fit miss. The furthest direction so far is itself
+  // a maximum of noisy chords: at 8 sigmas a clothoid of one turn with noise of a fifth of
+  // its step turned back by 9 and came out as four segments.)
+  const double slack = 16.0 * noise / (span * step);
   double low = angle.front();
   for (double a : angle) {
     if ((a - low) * sign < -slack) return std::nullopt;
@@ -112,6 +169,32 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   std::vector<ChainFoot> feet(m, {0, 0.0});
   for (std::size_t i = 1; i < m; ++i) feet[i].u = feet[i - 1].u + (p[i] - p[i - 1]).norm();
   for (ChainFoot& f : feet) f.u /= feet.back().u;
+  // Starts that turn along the points as the chords do (the end curvatures fitted to the
+  // chords' turning at kProfileSamples arc lengths, for each alpha of the grid, the
+  // closest first): the end chords alone are noisy, and a spiral's fit from a start 20%
+  // off in its end curvatures lands on the wrong turn.
+  std::vector<double> along(m, 0.0);  // arc length at each point, the polyline's scaled to `length`
+  for (std::size_t i = 1; i < m; ++i) along[i] = along[i - 1] + (p[i] - p[i - 1]).norm();
+  for (double& a : along) a *= length / along.back();
+  std::vector<double> profile_s, profile_turn;
+  for (std::size_t k = 0; k < kProfileSamples; ++k) {
+    const std::size_t j = k * (angle.size() - 1) / (kProfileSamples - 1);
+    profile_s.push_back(0.5 * (along[j] + along[j + span]));  // (a chord's direction is its middle's)
+    profile_turn.push_back(angle[j] - angle.front());
+  }
+  std::vector<std::pair<double, LaSegment>> profiled;
+  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += 0.25)
+    if (const auto fitted = profileSegment(alpha, length, k0, k1, profile_s, profile_turn)) {
+      const LaSegment& seg = fitted->first;
+      try {
+        profiled.push_back({fitted->second, LaSegment(alpha, length, p.front(), angle.front() - seg.theta(profile_s.front()),
+                                                      seg.kappaStart(), seg.kappaEnd())});
+      } catch (const std::invalid_argument&) {
+      }
+    }
+  std::sort(profiled.begin(), profiled.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (profiled.size() > kOneSegmentStarts) profiled.erase(profiled.begin() + kOneSegmentStarts, profiled.end());
+  starts.insert(starts.begin(), profiled.begin(), profiled.end());
   // (each start as it is, then with its end shot onto the last point: a spiral's far
   // turns follow its end, but a shot from a poor start curvature bends the law wrongly)
   std::vector<LaSegment> tries;

@@ -15,7 +15,10 @@ namespace la {
 /// The part as one LA segment within the tolerance, or nullopt: a part that is closed,
 /// pinned at a corner, turns no further than a merge may, turns back (an LA segment
 /// inflects at an end only), or whose curvature rises and falls, is not tried; a fit
-/// that misses the tolerance is not kept. No spline: stages 2-6 are not needed.
+/// that misses the tolerance is not kept. No spline: stages 2-6 are not needed. The fit
+/// starts from the segments, one per alpha of a grid, whose turning along the points
+/// follows the chords' best (least squares by Ceres), the closest first. fitStroke also
+/// tries a whole open stroke this way before the parts its corners cut it into.
 std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context);
 
 }  // namespace la

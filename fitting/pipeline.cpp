@@ -277,7 +277,22 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     return fit;
   };
   std::vector<PartFit> fits;
-  for (const Part& part : parts) fits.push_back(fitOne(part, true));
+  // An open stroke that one LA segment follows within the tolerance is that segment,
+  // whatever corners the clean-up read in it (fewest extrema, then fewest segments: one
+  // segment comes first; the tight inner turns of a spiral pass for corners).
+  if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.outOfTime()) {
+    const auto tp = Clock::now();
+    Part whole{r.cleaned.points, false, false, false};
+    std::optional<PartFit> one = oneSegmentPart(whole, context);
+    r.timings.polish_ms += msSince(tp);
+    if (one) {
+      parts = {std::move(whole)};
+      fits.push_back(std::move(*one));
+      r.cleaned.corners.clear();
+    }
+  }
+  if (fits.empty())
+    for (const Part& part : parts) fits.push_back(fitOne(part, true));
   // A corner is the clean-up's reading of the stroke, and a tight bend can pass for one.
   // Where a part beside a corner misses the tolerance and the two parts fitted as one
   // smooth part keep it, the corner goes. (The corner after part k: corners[k] of an
