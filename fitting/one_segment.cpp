@@ -186,8 +186,12 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += 0.25)
     if (const auto fitted = profileSegment(alpha, length, k0, k1, profile_s, profile_turn)) {
       const LaSegment& seg = fitted->first;
+      // (its start tangent from every chord's direction, not the first's alone: a chord
+      // turns by noise / chord, and a start a few degrees off sets a spiral's far turns off)
+      double offset = 0.0;
+      for (std::size_t i = 0; i < angle.size(); ++i) offset += angle[i] - seg.theta(0.5 * (along[i] + along[i + span]));
       try {
-        profiled.push_back({fitted->second, LaSegment(alpha, length, p.front(), angle.front() - seg.theta(profile_s.front()),
+        profiled.push_back({fitted->second, LaSegment(alpha, length, p.front(), offset / static_cast<double>(angle.size()),
                                                       seg.kappaStart(), seg.kappaEnd())});
       } catch (const std::invalid_argument&) {
       }
