@@ -1,0 +1,79 @@
+// The whole pipeline (fitStroke, default options) on strokes sampled from one LA segment
+// of several turns: the spirals a fitter of LA curves must fit with one or a few segments
+// (issue 16). Each benchmark is one alpha; one iteration fits all its spirals once:
+// 1, 2.5 and 4 turns (curvature 0.004 to 0.08), 200, 700 and 2,000 points at equal arc
+// length, noise-free and with Gaussian noise of 0.1 and 0.3 units (seeds 1 and 2). Its
+// counters: the spirals fitted, those that miss the tolerance, those with more than 2
+// segments a turn, those fitted as one segment, and the fit time per spiral (median,
+// p90, max; one core).
+//
+//   build/tests/benchmarks/spiral_benchmark
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "fitting/pipeline.h"
+
+namespace la {
+namespace {
+
+struct Spiral {
+  Stroke stroke;
+  double turns;
+};
+
+std::vector<Spiral> spiralsOf(double alpha) {
+  std::vector<Spiral> out;
+  for (double turns : {1.0, 2.5, 4.0}) {
+    const LaSegment truth = LaSegment::withTurning(alpha, 2.0 * std::numbers::pi * turns, {0, 0}, 0.3, 0.004, 0.08);
+    for (int n : {200, 700, 2000})
+      for (double noise : {0.0, 0.1, 0.3})
+        for (unsigned seed : {1u, 2u}) {
+          if (noise == 0.0 && seed > 1u) continue;  // (noise-free: one is enough)
+          std::mt19937 rng(seed);
+          std::normal_distribution<double> g(0.0, noise);
+          Spiral s{{}, turns};
+          for (int i = 0; i <= n; ++i) {
+            const Vec2 p = truth.position(truth.length() * i / n);
+            s.stroke.samples.push_back({noise > 0.0 ? Vec2(p + Vec2(g(rng), g(rng))) : p});
+          }
+          out.push_back(std::move(s));
+        }
+  }
+  return out;
+}
+
+void BM_Spirals(benchmark::State& state) {
+  const double alpha = static_cast<double>(state.range(0)) / 4.0;
+  const std::vector<Spiral> spirals = spiralsOf(alpha);
+  int missed = 0, too_many = 0, one = 0;
+  std::vector<double> ms;
+  for (auto _ : state) {
+    missed = too_many = one = 0;
+    ms.clear();
+    for (const Spiral& s : spirals) {
+      const FitResult r = fitStroke(s.stroke);
+      ms.push_back(r.timings.total_ms);
+      missed += r.quality.max_dev > r.tolerance;
+      too_many += static_cast<double>(r.curve.pieces.size()) > 2.0 * s.turns;
+      one += r.curve.pieces.size() == 1;
+    }
+  }
+  std::sort(ms.begin(), ms.end());
+  state.counters["spirals"] = static_cast<double>(spirals.size());
+  state.counters["missed"] = missed;
+  state.counters["over_2_a_turn"] = too_many;
+  state.counters["one_segment"] = one;
+  state.counters["ms_median"] = ms[ms.size() / 2];
+  state.counters["ms_p90"] = ms[ms.size() * 9 / 10];
+  state.counters["ms_max"] = ms.back();
+}
+// alpha = range / 4: -2, -1, 0, 0.5, 1, 2
+BENCHMARK(BM_Spirals)->Arg(-8)->Arg(-4)->Arg(0)->Arg(2)->Arg(4)->Arg(8)->Iterations(1)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace la
