@@ -192,7 +192,10 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
   };
   if (law.zero == ZeroEnd::kBoth) return uniform();  // a line: positions are exact on any panels
   double v0 = 1.0, v1 = 1.0, turning;
-  const double e = 1.0 - 1.0 / law.alpha;
+  // (e only where an end is zero: for alpha = 0, Nielsen's spiral, it is infinite, and the
+  // check below took the law for a broken one and gave it uniform panels, turning by
+  // radians each: a 2.5-turn spiral's fit from its own segment drifted 41 units off)
+  const double e = law.zero == ZeroEnd::kNone ? 1.0 : 1.0 - 1.0 / law.alpha;
   if (law.zero == ZeroEnd::kNone) {
     v1 = std::exp(law.alpha * (law.y0 - law.y1));
     turning = law.length * unitTurning(law.alpha, law.y0, law.y1, law.zero);

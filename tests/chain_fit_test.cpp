@@ -65,6 +65,23 @@ TEST(ChainFit, RecoversExactSegmentsOfEveryLaw) {
   }
 }
 
+// A segment of several turns started at its own law stays it, for alpha 0 as for its
+// neighbours: alpha 0 (Nielsen's spiral) had its fitting panels made uniform, each turning
+// by radians (the law was taken for a broken one), and the fit of a 2.5-turn spiral from
+// its own segment drifted to alpha 0.66, 41 units off.
+TEST(ChainFit, ASpiralOfSeveralTurnsStartedAtItsOwnLawStaysIt) {
+  for (double alpha : {-0.01, 0.0, 0.01}) {
+    SCOPED_TRACE("alpha " + std::to_string(alpha));
+    const std::vector<LaSegment> truth = {LaSegment::withTurning(alpha, 5.0 * std::numbers::pi, {0, 0}, 0.3, 0.004, 0.08)};
+    const std::vector<Vec2> points = sampleChain(truth, 700, 0.0, 1);
+    const ChainFitResult r = fitChain(truth, points, {});
+    ASSERT_TRUE(r.report.usable()) << r.report.message;
+    EXPECT_LE(r.report.iterations, 5);
+    EXPECT_NEAR(r.segments[0].alpha(), alpha, 1e-3);
+    EXPECT_LT(r.max_distance, 1e-6 * truth[0].length());
+  }
+}
+
 // `start` fitted to `points` (up to 100 iterations: starts far off), and the truth's
 // own sum of squares on them (unfitted).
 std::pair<ChainFitResult, ChainFitResult> fitAgainstTruth(const std::vector<LaSegment>& start,
