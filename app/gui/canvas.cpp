@@ -578,7 +578,7 @@ void Canvas::paintHint(QPainter& p) const {
 }
 
 void Canvas::paintRaw(QPainter& p, const std::vector<StrokeSample>& samples, const QColor& color) const {
-  if (m_layers.pressure_ink && hasPressure(samples)) p.fillPath(pressureInk(samples, m_view), color);
+  if (m_layers.pressure_ink && hasPressure(samples)) drawPressureDots(p, samples, m_view, color);
   else drawDots(p, decimatedPoints(samples, m_view), color, 3.6);  // 3.6 px wide, ~2 per pixel
 }
 
@@ -609,7 +609,7 @@ void Canvas::paintEvent(QPaintEvent*) {
   if (m_preview) paintCurve(p, *m_preview, -1);
   if (!m_current.samples.empty()) {  // the stroke in progress, as ink
     if (m_layers.pressure_ink && hasPressure(m_current.samples)) {
-      p.fillPath(pressureInk(m_current.samples, m_view), kStrokeInkColor);
+      drawPressureInk(p, m_current.samples, m_view, kStrokeInkColor);
     } else {
       QPolygonF ink;
       for (const StrokeSample& q : m_current.samples) ink << toWidget(q.p);

@@ -25,7 +25,7 @@ namespace la::gui {
 
 struct Layers {
   bool raw_points = true;
-  bool pressure_ink = true;  // a pen stroke drawn as ink whose width follows its pressure, not as dots
+  bool pressure_ink = true;  // a pen stroke's width follows its pressure: ink while drawn, its samples' dots after
   bool spline = false;  // the smoothed B-spline (stage 2)
   bool curve = true;
   bool comb = true;
@@ -135,8 +135,8 @@ class Canvas : public QWidget {
   bool pansWithLeftButton(Qt::KeyboardModifiers modifiers) const;
   double sharedMaxCurvature() const;  // over every fitted stroke and construction
   void paintSelection(QPainter& p, const DocumentStroke& stroke) const;
-  /// A stroke's raw samples: ink whose width follows the pen (Layers::pressure_ink, where
-  /// they carry pressure), else dots.
+  /// A stroke's raw samples: dots as wide as the pen's pressure makes its ink
+  /// (Layers::pressure_ink, where they carry pressure), else dots of one size.
   void paintRaw(QPainter& p, const std::vector<StrokeSample>& samples, const QColor& color) const;
   void paintHint(QPainter& p) const;  // on the empty canvas: how to start
   void paintConstruction(QPainter& p, const Construction& c, bool selected) const;

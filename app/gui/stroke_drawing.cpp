@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <unordered_set>
 
 #include <QPainter>
@@ -71,54 +72,46 @@ std::vector<double> inkWidths(const std::vector<StrokeSample>& points, double wi
   return share;
 }
 
-QPainterPath pressureInk(const std::vector<StrokeSample>& points, const QTransform& view, double width) {
+void drawPressureInk(QPainter& p, const std::vector<StrokeSample>& points, const QTransform& view, const QColor& color,
+                     double width) {
   const std::vector<double> widths = inkWidths(points, width);
-  QPainterPath ink;
-  ink.setFillRule(Qt::WindingFill);
-  // every polygon counter-clockwise in widget coordinates (positive shoelace area), so
-  // the winding number is positive wherever any of them covers
-  auto addWound = [&ink](QPolygonF polygon) {
-    double area = 0.0;
-    for (qsizetype i = 0; i < polygon.size(); ++i) {
-      const QPointF& a = polygon[i];
-      const QPointF& b = polygon[(i + 1) % polygon.size()];
-      area += a.x() * b.y() - b.x() * a.y();
-    }
-    if (area < 0) std::reverse(polygon.begin(), polygon.end());
-    ink.addPolygon(polygon);
-    ink.closeSubpath();
+  const std::vector<std::size_t> kept = decimatedIndices(points, view, kInkStepPixels);
+  if (kept.empty()) return;
+  auto at = [&](std::size_t i) { return view.map(QPointF(points[i].p.x(), points[i].p.y())); };
+  auto stepOf = [&](std::size_t k) {  // the width from kept[k] to the next, in kInkWidthStep
+    const std::size_t i = kept[k], j = kept[std::min(k + 1, kept.size() - 1)];
+    return std::max(1, static_cast<int>(std::lround(0.5 * (widths[i] + widths[j]) / kInkWidthStep)));
   };
-  constexpr int kDiscSides = 12;  // a disc of at most 4 px: a 12-gon is round to the eye
-  QPointF last;
-  double last_radius = 0.0;
-  bool first = true;
-  for (std::size_t i : decimatedIndices(points, view)) {
-    const QPointF q = view.map(QPointF(points[i].p.x(), points[i].p.y()));
-    const double radius = 0.5 * widths[i];
-    QPolygonF disc;
-    for (int k = 0; k < kDiscSides; ++k) {
-      const double a = 2.0 * M_PI * k / kDiscSides;
-      disc << q + radius * QPointF(std::cos(a), std::sin(a));
+  // (runs of one width as one polyline: pressure changes slowly, and a polyline with round
+  // joins strokes far faster than its steps as lines with round caps)
+  p.save();
+  QPolygonF run{at(kept.front())};
+  int step = stepOf(0);
+  for (std::size_t k = 1; k <= kept.size(); ++k) {
+    const bool last = k == kept.size();
+    if (!last) run << at(kept[k]);
+    if (last || (k + 1 < kept.size() && stepOf(k) != step)) {
+      p.setPen(QPen(color, step * kInkWidthStep, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+      if (run.size() == 1) p.drawPoint(run.front());
+      else p.drawPolyline(run);
+      if (last) break;
+      run = QPolygonF{run.back()};
+      step = stepOf(k);
     }
-    addWound(disc);
-    const QPointF d = q - last;
-    const double length = std::hypot(d.x(), d.y());
-    if (!first && length > 0.0) {
-      const QPointF n(-d.y() / length, d.x() / length);
-      addWound(QPolygonF{last + last_radius * n, q + radius * n, q - radius * n, last - last_radius * n});
-    }
-    last = q, last_radius = radius, first = false;
   }
-  return ink;
+  p.restore();
 }
 
 void drawDots(QPainter& p, const QPolygonF& at, const QColor& color, double diameter) {
   // one antialiased dot, blitted at every point in one call (a round-capped point or an
-  // ellipse per point is flattened from Beziers each time: 200,000 of them took 250 ms)
+  // ellipse per point is flattened from Beziers each time: 200,000 of them took 250 ms),
+  // made once per color and diameter (pressure dots come in up to 16 diameters a stroke)
+  static std::map<std::pair<QRgb, double>, QPixmap> sprites;
   const int size = static_cast<int>(std::ceil(diameter)) + 2;
-  QPixmap dot(size, size);
-  dot.fill(Qt::transparent);
-  {
+  QPixmap& dot = sprites[{color.rgba(), diameter}];
+  if (dot.isNull()) {
+    dot = QPixmap(size, size);
+    dot.fill(Qt::transparent);
     QPainter d(&dot);
     d.setRenderHint(QPainter::Antialiasing);
     d.setPen(Qt::NoPen);
@@ -129,6 +122,16 @@ void drawDots(QPainter& p, const QPolygonF& at, const QColor& color, double diam
   fragments.reserve(static_cast<std::size_t>(at.size()));
   for (const QPointF& q : at) fragments.push_back(QPainter::PixmapFragment::create(q, QRectF(0, 0, size, size)));
   p.drawPixmapFragments(fragments.data(), static_cast<int>(fragments.size()), dot);
+}
+
+void drawPressureDots(QPainter& p, const std::vector<StrokeSample>& points, const QTransform& view, const QColor& color,
+                      double width) {
+  const std::vector<double> widths = inkWidths(points, width);
+  std::map<int, QPolygonF> by_width;  // in kInkWidthStep
+  for (std::size_t i : decimatedIndices(points, view))
+    by_width[std::max(1, static_cast<int>(std::lround(widths[i] / kInkWidthStep)))]
+        << view.map(QPointF(points[i].p.x(), points[i].p.y()));
+  for (const auto& [step, at] : by_width) drawDots(p, at, color, step * kInkWidthStep);
 }
 
 Comb StrokeDrawing::comb(double gain) const {

@@ -14,7 +14,6 @@
 // width following the pen's pressure sample by sample (a view option, Layers::pressure_ink).
 
 #include <QColor>
-#include <QPainterPath>
 #include <QPainter>
 #include <QPointF>
 #include <QPolygonF>
@@ -56,12 +55,24 @@ bool hasPressure(const std::vector<StrokeSample>& points);
 /// least kInkLeastShare of `width`; a sample without pressure gets its neighbours' mean share.
 std::vector<double> inkWidths(const std::vector<StrokeSample>& points, double width = kInkWidthPixels);
 
-/// The stroke mapped through `view` as one fillable outline whose width follows the pen
-/// pressure (inkWidths): a disc at every kept sample and the quad between consecutive ones,
-/// all wound the same way, so the winding fill is their union (no seams, no double-dark
-/// overlaps where the ink is translucent).
-QPainterPath pressureInk(const std::vector<StrokeSample>& points, const QTransform& view,
-                         double width = kInkWidthPixels);
+/// Ink widths are drawn in steps of this many pixels: one round-capped pen per step.
+inline constexpr double kInkWidthStep = 0.25;
+
+/// Ink follows the samples kept one per this many pixels (its widths are at most 4).
+inline constexpr double kInkStepPixels = 1.5;
+
+/// The stroke mapped through `view` as ink of opaque `color` whose width follows the pen
+/// pressure (inkWidths): the samples kept one per kInkStepPixels (decimatedIndices), each
+/// run of steps of one width (their ends' mean, in kInkWidthStep) one round-joined
+/// polyline. (One filled outline of discs and quads cost 60 ms a repaint of 50 strokes.)
+void drawPressureInk(QPainter& p, const std::vector<StrokeSample>& points, const QTransform& view, const QColor& color,
+                     double width = kInkWidthPixels);
+
+/// The same ink as dots, ~2 per pixel (decimatedPoints), each as wide as the pen's
+/// pressure makes the ink there, blitted per width step: a drawn stroke's raw samples,
+/// repainted with every stroke (as polylines, 50 pen strokes took 23 ms a repaint).
+void drawPressureDots(QPainter& p, const std::vector<StrokeSample>& points, const QTransform& view,
+                      const QColor& color, double width = kInkWidthPixels);
 
 /// Round dots of `diameter` pixels centred on `at` (widget pixels), drawn in one call.
 void drawDots(QPainter& p, const QPolygonF& at, const QColor& color, double diameter);

@@ -13,6 +13,7 @@
 #include <QPainter>
 #include <QWheelEvent>
 #include <cmath>
+#include <numbers>
 #include <memory>
 #include <random>
 
@@ -24,8 +25,9 @@ namespace {
 
 constexpr int kWidth = 1100, kHeight = 760;
 
-// A wavy pen stroke of n samples with a little noise (seeded: the same every run).
-Stroke waveStroke(int n, double x0, double y0, double length, double amplitude, unsigned seed) {
+// A wavy pen stroke of n samples with a little noise (seeded: the same every run), with
+// a pen pressure rising and falling along it where `pressure`.
+Stroke waveStroke(int n, double x0, double y0, double length, double amplitude, unsigned seed, bool pressure = false) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 0.3);
   Stroke s;
@@ -34,6 +36,7 @@ Stroke waveStroke(int n, double x0, double y0, double length, double amplitude, 
     StrokeSample q;
     q.p = Vec2(x + noise(rng), y0 + amplitude * std::sin((x - x0) / (length / 4.0)) + noise(rng));
     q.t = 8.0 * i;
+    if (pressure) q.pressure = 0.2 + 0.7 * std::sin(std::numbers::pi * i / (n - 1));
     s.samples.push_back(q);
   }
   return s;
@@ -62,6 +65,17 @@ Sketch& fiftyStrokes() {
     std::vector<Stroke> strokes;
     for (int k = 0; k < 50; ++k)
       strokes.push_back(waveStroke(150, 20.0 + 40.0 * (k % 5), 30.0 + 15.0 * k, 700.0, 25.0 + k % 7, 17u + k));
+    return strokes;
+  }());
+  return sketch;
+}
+
+// The same strokes drawn with pressure: their raw samples are pressure ink (Layers::pressure_ink).
+Sketch& fiftyPenStrokes() {
+  static Sketch sketch([] {
+    std::vector<Stroke> strokes;
+    for (int k = 0; k < 50; ++k)
+      strokes.push_back(waveStroke(150, 20.0 + 40.0 * (k % 5), 30.0 + 15.0 * k, 700.0, 25.0 + k % 7, 17u + k, true));
     return strokes;
   }());
   return sketch;
@@ -103,6 +117,7 @@ BENCHMARK(BM_Repaint50FairedStrokesOneLayer)->DenseRange(0, 3)->Unit(benchmark::
 
 void BM_Repaint50FairedStrokes(benchmark::State& state) { repaint(state, fiftyStrokes(), false); }
 void BM_Repaint50FairedStrokesZoomed(benchmark::State& state) { repaint(state, fiftyStrokes(), true); }
+void BM_Repaint50FairedPenStrokesInk(benchmark::State& state) { repaint(state, fiftyPenStrokes(), false); }
 void BM_Repaint200kPointStroke(benchmark::State& state) { repaint(state, hugeStroke(), false); }
 void BM_Repaint200kPointStrokeZoomed(benchmark::State& state) { repaint(state, hugeStroke(), true); }
 
@@ -120,6 +135,7 @@ BENCHMARK(BM_PenUpProvisionalFit)->Arg(500)->Arg(2000)->Arg(8000)->Unit(benchmar
 
 BENCHMARK(BM_Repaint50FairedStrokes)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Repaint50FairedStrokesZoomed)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Repaint50FairedPenStrokesInk)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Repaint200kPointStroke)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Repaint200kPointStrokeZoomed)->Unit(benchmark::kMillisecond);
 
