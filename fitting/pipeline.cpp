@@ -101,7 +101,7 @@ std::vector<Vec2> tightBends(const FitResult& r) {
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const LaSegment& seg = pieces[i].segment;
     const bool at_end = std::abs(seg.kappaEnd()) >= std::abs(seg.kappaStart());
-    if (!(std::max(std::abs(seg.kappaStart()), std::abs(seg.kappaEnd())) * r.tolerance > kTighterThanTolerance)) continue;
+    if (!bendsTighterThan({seg}, r.tolerance)) continue;
     const bool last = i + 1 == pieces.size();
     const bool joint = at_end ? (!last || r.curve.closed) && !pieces[last ? 0 : i + 1].corner
                               : (i > 0 || r.curve.closed) && !pieces[i].corner;
