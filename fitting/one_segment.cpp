@@ -84,9 +84,21 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   constexpr std::size_t kProfileSamples = 24;   // arc lengths the starts' turning is fitted at
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
-  const double step = medianStep(p);
-  const std::size_t span =
-      static_cast<std::size_t>(ceilWithin(kChordNoise * noise / std::max(step, 1e-300), 1, static_cast<int>(m / 8 + 1)));
+  // (`span` from the median step, then from the chords it gives: where the noise is as
+  // large as the step, the steps are twice as long as the points' advance, and chords of
+  // that span are half as long as meant)
+  const int most = static_cast<int>(m / 8 + 1);
+  auto meanChord = [&](std::size_t span) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i + span < m; ++i) sum += (p[i + span] - p[i]).norm();
+    return sum / static_cast<double>(std::max<std::size_t>(1, m - std::min(m, span)));
+  };
+  std::size_t span = static_cast<std::size_t>(ceilWithin(kChordNoise * noise / std::max(medianStep(p), 1e-300), 1, most));
+  double chord = meanChord(span);
+  if (chord < kChordNoise * noise) {
+    span = static_cast<std::size_t>(ceilWithin(static_cast<double>(span) * kChordNoise * noise / std::max(chord, 1e-300), 1, most));
+    chord = meanChord(span);
+  }
   if (m < 2 * span + 3) return std::nullopt;
   std::vector<double> angle;  // of each chord p[i] -> p[i + span], followed along
   for (std::size_t i = 0; i + span < m; ++i) {
@@ -109,7 +121,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // smaller one that is real makes the fit miss. The furthest direction so far is itself
   // a maximum of noisy chords: at 8 sigmas a clothoid of one turn with noise of a fifth of
   // its step turned back by 9 and came out as four segments.)
-  const double slack = 16.0 * noise / (span * step);
+  const double slack = 16.0 * noise / chord;
   double low = angle.front();
   for (double a : angle) {
     if ((a - low) * sign < -slack) return std::nullopt;
@@ -122,7 +134,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   std::vector<double> kappa;
   for (std::size_t i = 0; i + window < angle.size(); i += window) kappa.push_back(std::abs(angle[i + window] - angle[i]));
   const double largest = *std::max_element(kappa.begin(), kappa.end());
-  const double reversal = std::max(0.25 * largest, 8.0 * noise / (span * step));
+  const double reversal = std::max(0.25 * largest, 8.0 * noise / chord);
   double top = kappa.front(), bottom = kappa.front();
   int trend = 0;  // +1 rising, -1 falling, once a change beyond `reversal` shows it
   for (double k : kappa) {
@@ -148,7 +160,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   const double k0 = endKappa(angle[end] - angle[0], angle[2 * end] - angle[end]);
   const double k1 = endKappa(angle[last] - angle[last - end], angle[last - end] - angle[last - 2 * end]);
   // (the chords' tangent at the start: the first chord's, turned back by half of its bend)
-  const double theta0 = angle.front() - 0.5 * k0 * span * step;
+  const double theta0 = angle.front() - 0.5 * k0 * chord;
   // (the alphas whose segments come nearest the points' length, the nearest first: a
   // spiral of several turns has local minima where a start lands on the wrong turn)
   std::vector<std::pair<double, LaSegment>> starts;
