@@ -15,19 +15,18 @@
 namespace la {
 namespace {
 
-// The chords' turning along the points (`turn[k]` from the profile's first arc length
-// s[k = 0] to s[k]) against an LA segment's of one alpha and the points' length; the
-// unknowns are log |kappa| at its ends (of the turning's sign). Ceres differentiates it
-// numerically: the segment's turning is a closed form, cheap to evaluate.
+// The chords' directions along the points (`angle[k]` at arc length s[k]) against an LA
+// segment's tangent there, of one alpha and the points' length; the unknowns are log
+// |kappa| at its ends (of the turning's sign) and its start tangent. Ceres differentiates
+// it numerically: the segment's tangent angle is a closed form, cheap to evaluate.
 struct TurningProfile {
   double alpha, length, sign;
   const std::vector<double>* s;
-  const std::vector<double>* turn;
-  bool operator()(const double* y, double* residual) const {
+  const std::vector<double>* angle;
+  bool operator()(const double* x, double* residual) const {
     try {
-      const LaSegment seg(alpha, length, Vec2::Zero(), 0.0, sign * std::exp(y[0]), sign * std::exp(y[1]));
-      const double first = seg.theta((*s)[0]);
-      for (std::size_t k = 0; k < s->size(); ++k) residual[k] = seg.theta((*s)[k]) - first - (*turn)[k];
+      const LaSegment seg(alpha, length, Vec2::Zero(), x[2], sign * std::exp(x[0]), sign * std::exp(x[1]));
+      for (std::size_t k = 0; k < s->size(); ++k) residual[k] = seg.theta((*s)[k]) - (*angle)[k];
       return std::all_of(residual, residual + s->size(), [](double r) { return std::isfinite(r); });
     } catch (const std::invalid_argument&) {
       return false;  // (a step to a curvature the law has no segment for: Ceres steps shorter)
@@ -35,22 +34,24 @@ struct TurningProfile {
   }
 };
 
-// The end curvatures that make the segment of `alpha` and `length` turn as the chords
-// do (least squares over the profile, from `k0`, `k1`), and the profile's sum of squares
-// left; nullopt where Ceres finds no usable solution.
-std::optional<std::pair<LaSegment, double>> profileSegment(double alpha, double length, double k0, double k1,
-                                                           const std::vector<double>& s, const std::vector<double>& turn) {
+// The segment of `alpha` and `length` from `start` whose tangent follows the chords'
+// directions best (least squares over the profile, from end curvatures `k0`, `k1` and
+// start tangent `theta0`), and the profile's sum of squares left; nullopt where Ceres
+// finds no usable solution.
+std::optional<std::pair<LaSegment, double>> profileSegment(double alpha, double length, const Vec2& start,
+                                                           double theta0, double k0, double k1,
+                                                           const std::vector<double>& s, const std::vector<double>& angle) {
   const double sign = k0 < 0.0 ? -1.0 : 1.0;
-  double y[2] = {std::log(std::abs(k0)), std::log(std::abs(k1))};
+  double x[3] = {std::log(std::abs(k0)), std::log(std::abs(k1)), theta0};
   ceres::Problem problem;
-  problem.AddResidualBlock(new ceres::NumericDiffCostFunction<TurningProfile, ceres::CENTRAL, ceres::DYNAMIC, 2>(
-                               new TurningProfile{alpha, length, sign, &s, &turn}, ceres::TAKE_OWNERSHIP,
+  problem.AddResidualBlock(new ceres::NumericDiffCostFunction<TurningProfile, ceres::CENTRAL, ceres::DYNAMIC, 3>(
+                               new TurningProfile{alpha, length, sign, &s, &angle}, ceres::TAKE_OWNERSHIP,
                                static_cast<int>(s.size())),
-                           nullptr, y);
+                           nullptr, x);
   // (a curvature whose radius is 1e-4 to 1e4 times the length: beyond, no drawn spiral)
   for (int i = 0; i < 2; ++i) {
-    problem.SetParameterLowerBound(y, i, std::log(1e-4 / length));
-    problem.SetParameterUpperBound(y, i, std::log(1e4 / length));
+    problem.SetParameterLowerBound(x, i, std::log(1e-4 / length));
+    problem.SetParameterUpperBound(x, i, std::log(1e4 / length));
   }
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
@@ -60,7 +61,7 @@ std::optional<std::pair<LaSegment, double>> profileSegment(double alpha, double 
   ceres::Solve(options, &problem, &summary);
   if (!summary.IsSolutionUsable()) return std::nullopt;
   try {
-    return std::pair{LaSegment(alpha, length, Vec2::Zero(), 0.0, sign * std::exp(y[0]), sign * std::exp(y[1])),
+    return std::pair{LaSegment(alpha, length, start, x[2], sign * std::exp(x[0]), sign * std::exp(x[1])),
                      summary.final_cost};
   } catch (const std::invalid_argument&) {
     return std::nullopt;
@@ -81,7 +82,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   constexpr int kOneSegmentIterations = 40;
   constexpr std::size_t kOneSegmentStarts = 3;
   constexpr std::size_t kCurvatureWindows = 8;  // for the test of monotone curvature
-  constexpr std::size_t kProfileSamples = 24;   // arc lengths the starts' turning is fitted at
+  constexpr std::size_t kProfileSamples = 48;   // arc lengths the starts' turning is fitted at
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
   // (`span` from the median step, then from the chords it gives: where the noise is as
@@ -181,33 +182,24 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   std::vector<ChainFoot> feet(m, {0, 0.0});
   for (std::size_t i = 1; i < m; ++i) feet[i].u = feet[i - 1].u + (p[i] - p[i - 1]).norm();
   for (ChainFoot& f : feet) f.u /= feet.back().u;
-  // Starts that turn along the points as the chords do (the end curvatures fitted to the
-  // chords' turning at kProfileSamples arc lengths, for each alpha of the grid, the
+  // Starts whose tangent follows the chords' directions (end curvatures and start tangent
+  // fitted to the chords at kProfileSamples arc lengths, for each alpha of the grid, the
   // closest first): the end chords alone are noisy, and a spiral's fit from a start 20%
-  // off in its end curvatures lands on the wrong turn.
+  // off in its end curvatures, or a few degrees off in its start tangent, lands on the
+  // wrong turn.
   std::vector<double> along(m, 0.0);  // arc length at each point, the polyline's scaled to `length`
   for (std::size_t i = 1; i < m; ++i) along[i] = along[i - 1] + (p[i] - p[i - 1]).norm();
   for (double& a : along) a *= length / along.back();
-  std::vector<double> profile_s, profile_turn;
+  std::vector<double> profile_s, profile_angle;
   for (std::size_t k = 0; k < kProfileSamples; ++k) {
     const std::size_t j = k * (angle.size() - 1) / (kProfileSamples - 1);
     profile_s.push_back(0.5 * (along[j] + along[j + span]));  // (a chord's direction is its middle's)
-    profile_turn.push_back(angle[j] - angle.front());
+    profile_angle.push_back(angle[j]);
   }
   std::vector<std::pair<double, LaSegment>> profiled;
   for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += 0.25)
-    if (const auto fitted = profileSegment(alpha, length, k0, k1, profile_s, profile_turn)) {
-      const LaSegment& seg = fitted->first;
-      // (its start tangent from every chord's direction, not the first's alone: a chord
-      // turns by noise / chord, and a start a few degrees off sets a spiral's far turns off)
-      double offset = 0.0;
-      for (std::size_t i = 0; i < angle.size(); ++i) offset += angle[i] - seg.theta(0.5 * (along[i] + along[i + span]));
-      try {
-        profiled.push_back({fitted->second, LaSegment(alpha, length, p.front(), offset / static_cast<double>(angle.size()),
-                                                      seg.kappaStart(), seg.kappaEnd())});
-      } catch (const std::invalid_argument&) {
-      }
-    }
+    if (auto fitted = profileSegment(alpha, length, p.front(), theta0, k0, k1, profile_s, profile_angle))
+      profiled.push_back({fitted->second, fitted->first});
   std::sort(profiled.begin(), profiled.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (profiled.size() > kOneSegmentStarts) profiled.erase(profiled.begin() + kOneSegmentStarts, profiled.end());
   starts.insert(starts.begin(), profiled.begin(), profiled.end());
