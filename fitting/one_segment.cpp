@@ -72,9 +72,8 @@ std::optional<std::pair<LaSegment, double>> profileSegment(double alpha, double 
 // apart followed along it, `span` long enough that noise cannot turn a chord by much),
 // its length, the mean curvature over a few chords at each end, and the alphas whose
 // segments with those are about as long as the points; then fitted by least squares,
-// from each of those starts until one is within the tolerance. Nullopt where the turning
-// changes direction inside (an LA segment inflects at an end only) or the fit misses the
-// tolerance.
+// from each of those starts until one is within the tolerance, else the closest. Nullopt
+// where the turning changes direction inside (an LA segment inflects at an end only).
 std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOptions& so, double noise) {
   constexpr double kChordNoise = 20.0;  // a chord at least this many noise sigmas long
   constexpr double kEnd = 0.03;        // of the chords at each end, for the end curvatures
@@ -211,11 +210,14 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
     if (const auto shot = shootSegment(turning, p.front(), theta0, k0, k1, guess.alpha(), so.fit.min_alpha, so.fit.max_alpha, p.back()))
       tries.push_back(*shot);
   }
+  std::optional<ChainFitResult> closest;  // (the first within the tolerance ends the search)
   for (const LaSegment& guess : tries) {
     ChainFitResult r = fitChain({guess}, p, feet, co);
-    if (r.report.status != SolveStatus::kBadInput && r.max_distance <= so.tolerance) return r;
+    if (r.report.status == SolveStatus::kBadInput || (closest && !(r.max_distance < closest->max_distance))) continue;
+    closest = std::move(r);
+    if (closest->max_distance <= so.tolerance) break;
   }
-  return std::nullopt;
+  return closest;
 }
 
 }  // namespace

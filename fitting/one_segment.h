@@ -12,10 +12,11 @@
 
 namespace la {
 
-/// The part as one LA segment within the tolerance, or nullopt: a part that is closed,
-/// pinned at a corner, turns no further than a merge may, turns back (an LA segment
-/// inflects at an end only), or whose curvature rises and falls, is not tried; a fit
-/// that misses the tolerance is not kept. No spline: stages 2-6 are not needed. The fit
+/// The part as one LA segment (its max_dev says whether within the tolerance: where none
+/// is, the closest, which the caller may keep if the chains of several do worse), or
+/// nullopt: a part that is closed, pinned at a corner, turns no further than a merge
+/// may, turns back (an LA segment inflects at an end only), or whose curvature rises and
+/// falls, is not tried. No spline: stages 2-6 are not needed. The fit
 /// starts from the segments, one per alpha of a grid, whose turning along the points
 /// follows the chords' best (least squares by Ceres), the closest first. fitStroke also
 /// tries a whole open stroke this way before the parts its corners cut it into.

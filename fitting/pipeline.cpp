@@ -191,12 +191,21 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       paper.max_dev = maxDeviationOf(paper.segments, part.points, diag);
       return paper;
     }
+    // (one LA segment that misses the tolerance by a little: kept where the chains of
+    // several miss it by more; a noisy spiral's chain path went 41 tolerances astray
+    // where its one segment missed by a tenth)
+    std::optional<PartFit> one;
     if (polishing) {
       const auto tp = Clock::now();
-      std::optional<PartFit> one = oneSegmentPart(part, context);
+      one = oneSegmentPart(part, context);
       r.timings.polish_ms += msSince(tp);
-      if (one) return *one;
+      if (one && one->max_dev <= r.tolerance) return *one;
     }
+    auto orOne = [&](PartFit&& fit) {
+      if (one && one->g2.usable() && !(worstOf(fit, part) <= r.tolerance) && worstOf(*one, part) < worstOf(fit, part))
+        return std::move(*one);
+      return std::move(fit);
+    };
     PartFit fit = fitPart(part, context, polishing);
     if (polishing && fit.segments.size() > polish_room) {
       if (!r.over_polish_limit)
@@ -235,7 +244,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
                                                                : measure(other) < measure(fit);
       if (better) fit = std::move(other);
     };
-    if (!other_starts) return measure(fit), fit;
+    if (!other_starts) return orOne(std::move(fit));
     // Stages 2-6 as the paper has them (cutting pieces that stray or have no LA
     // segment): a chain close to the points. (Also out of time: stage 7's chain may have
     // been cut short far from the points, and the paper's costs a fraction of it.)
@@ -249,8 +258,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       smoothed.points = withoutStairs(part.points, part.closed);
       consider(fitPart(smoothed, context, true));
     }
-    measure(fit);
-    return fit;
+    return orOne(std::move(fit));
   };
   // A part whose chain misses the tolerance with a joint on the bound of the radius (the
   // points need a bend tighter than it that the clean-up took for no corner): fitted
@@ -285,7 +293,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     Part whole{r.cleaned.points, false, false, false};
     std::optional<PartFit> one = oneSegmentPart(whole, context);
     r.timings.polish_ms += msSince(tp);
-    if (one) {
+    if (one && one->max_dev <= r.tolerance) {
       parts = {std::move(whole)};
       fits.push_back(std::move(*one));
       r.cleaned.corners.clear();
