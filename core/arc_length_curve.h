@@ -47,7 +47,7 @@ class LaSegmentView final : public ArcLengthCurve {
   // Curvature keeps one sign and is monotone along an LA segment.
   double totalTurning() const override { return std::abs(segment_.turning()); }
   double maxAbsKappa() const override {
-    return std::max(std::abs(segment_.kappaStart()), std::abs(segment_.kappaEnd()));
+    return segment_.maxAbsKappa();
   }
 
  private:

@@ -15,7 +15,9 @@
 // exactly (inflectionOffset). The closed forms are written with log1p/expm1 so
 // that near-circular segments (curvature ratio close to 1) lose no precision.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "core/geometry.h"
@@ -60,6 +62,8 @@ class LaSegment {
   double theta0() const { return theta0_; }
   double kappaStart() const { return kappa_start_; }
   double kappaEnd() const { return kappa_end_; }
+  /// The largest |kappa| on the segment: at an end, its curvature being monotone.
+  double maxAbsKappa() const { return std::max(std::abs(kappa_start_), std::abs(kappa_end_)); }
   /// +1 for a left-turning segment, -1 for right, 0 for a straight line.
   double turnSign() const { return sign_; }
   bool isCircular() const { return law_ == Law::kConstant; }

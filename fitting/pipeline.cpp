@@ -83,12 +83,16 @@ double hookTolerance(const Stroke& stroke, const FitOptions& options) {
   return lo.x() <= hi.x() ? options.tolerance_fraction * (hi - lo).norm() : 0.0;
 }
 
-// Whether some segment bends tighter than the tolerance (an LA segment's curvature is
-// monotone: its largest is at an end).
+// The largest |kappa| of a chain.
+double largestKappa(const std::vector<LaSegment>& segments) {
+  double most = 0.0;
+  for (const LaSegment& s : segments) most = std::max(most, s.maxAbsKappa());
+  return most;
+}
+
+// Whether some segment bends tighter than the tolerance.
 bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) {
-  return std::any_of(segments.begin(), segments.end(), [&](const LaSegment& s) {
-    return std::max(std::abs(s.kappaStart()), std::abs(s.kappaEnd())) * tolerance > kTighterThanTolerance;
-  });
+  return largestKappa(segments) * tolerance > kTighterThanTolerance;
 }
 
 // Where the curve bends tighter than the tolerance: at a G2 joint, the joint; towards a
@@ -100,8 +104,8 @@ std::vector<Vec2> tightBends(const FitResult& r) {
   const double limit = 1.0 / r.tolerance;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const LaSegment& seg = pieces[i].segment;
+    if (!(seg.maxAbsKappa() * r.tolerance > kTighterThanTolerance)) continue;
     const bool at_end = std::abs(seg.kappaEnd()) >= std::abs(seg.kappaStart());
-    if (!bendsTighterThan({seg}, r.tolerance)) continue;
     const bool last = i + 1 == pieces.size();
     const bool joint = at_end ? (!last || r.curve.closed) && !pieces[last ? 0 : i + 1].corner
                               : (i > 0 || r.curve.closed) && !pieces[i].corner;
@@ -270,10 +274,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit) return fit;
     const auto worst = [&](PartFit& f) { return worstOf(f, part); };
     const double miss = worst(fit);
-    // (an LA segment's curvature is monotone: its largest is at an end)
-    const bool on_bound = std::any_of(fit.segments.begin(), fit.segments.end(), [&](const LaSegment& s) {
-      return std::max(std::abs(s.kappaStart()), std::abs(s.kappaEnd())) * r.tolerance > kOnTheBound;
-    });
+    const bool on_bound = largestKappa(fit.segments) * r.tolerance > kOnTheBound;
     if (!(miss > r.tolerance) || miss > kBoundsMiss * r.tolerance || !on_bound) return fit;
     const std::size_t bounded_room = polish_room;
     polish_room = room;

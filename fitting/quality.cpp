@@ -175,7 +175,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
     const LaSegment& seg = piece.segment;
-    const double kmax = std::max(std::abs(seg.kappaStart()), std::abs(seg.kappaEnd()));
+    const double kmax = seg.maxAbsKappa();
     const double h = std::sqrt(8.0 * resolution * diagonal / std::max(kmax, 1e-300));
     const int n = ceilWithin(seg.length() / h, 7, 99999) + 1;
     smp.clear();
@@ -367,8 +367,7 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
   ReversalCounter reversals(kSmallestCurvatureChange / diag);
   for (const CurvePiece& piece : curve.pieces) {
     reversals.addSegment(piece.segment);
-    // monotone curvature: the largest |kappa| of a segment is at one of its ends
-    q.max_abs_kappa = std::max({q.max_abs_kappa, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
+    q.max_abs_kappa = std::max(q.max_abs_kappa, piece.segment.maxAbsKappa());
   }
   if (curve.closed && n > 0) reversals.add(curve.pieces[0].segment.kappaStart());
   q.extrema_dense = reversals.reversals(curve.closed);

@@ -26,7 +26,7 @@ double toothAt(int k, int teeth, double length, bool closed) {
 double maxAbsCurvature(const Curve& curve) {
   double kmax = 0.0;
   for (const CurvePiece& piece : curve.pieces)
-    kmax = std::max({kmax, std::abs(piece.segment.kappaStart()), std::abs(piece.segment.kappaEnd())});
+    kmax = std::max(kmax, piece.segment.maxAbsKappa());
   return kmax;
 }
 
