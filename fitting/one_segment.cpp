@@ -178,17 +178,16 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   co.max_iterations = kOneSegmentIterations;
   // (each point's foot where its arc length puts it: found from scratch, a point could
   // take its foot on the neighbouring turn of a spiral)
+  std::vector<double> along(m, 0.0);  // arc length at each point along the polyline
+  for (std::size_t i = 1; i < m; ++i) along[i] = along[i - 1] + (p[i] - p[i - 1]).norm();
   std::vector<ChainFoot> feet(m, {0, 0.0});
-  for (std::size_t i = 1; i < m; ++i) feet[i].u = feet[i - 1].u + (p[i] - p[i - 1]).norm();
-  for (ChainFoot& f : feet) f.u /= feet.back().u;
+  for (std::size_t i = 0; i < m; ++i) feet[i].u = along[i] / along.back();
   // Starts whose tangent follows the chords' directions (end curvatures and start tangent
   // fitted to the chords at kProfileSamples arc lengths, for each alpha of the grid, the
   // closest first): the end chords alone are noisy, and a spiral's fit from a start 20%
   // off in its end curvatures, or a few degrees off in its start tangent, lands on the
   // wrong turn.
-  std::vector<double> along(m, 0.0);  // arc length at each point, the polyline's scaled to `length`
-  for (std::size_t i = 1; i < m; ++i) along[i] = along[i - 1] + (p[i] - p[i - 1]).norm();
-  for (double& a : along) a *= length / along.back();
+  for (double& a : along) a *= length / along.back();  // (noise lengthens the polyline)
   std::vector<double> profile_s, profile_angle;
   for (std::size_t k = 0; k < kProfileSamples; ++k) {
     const std::size_t j = k * (angle.size() - 1) / (kProfileSamples - 1);
