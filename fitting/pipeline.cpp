@@ -358,9 +358,10 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     r.timings.polish_ms += msSince(tp);
   }
   // The stroke's one segment that missed the tolerance, where the parts miss it by more
-  // (their deviation or stray): a noisy spiral of four turns, whose tight inner turns the
-  // clean-up read as two corners, came out of its parts 17 tolerances astray where one
-  // segment missed by a tenth (as a part's near miss is kept, fitOneWith's orOne).
+  // (their deviation or stray), as a part's near miss is kept (fitOneWith's orOne): a
+  // noisy spiral of four turns, whose tight inner turns the clean-up read as two corners,
+  // came out of its parts 17 tolerances astray, where its one segment missed by the chain
+  // fit's own measure of its distances only (0.91 of the tolerance by the quality figures').
   if (one && one->g2.usable()) {
     double parts_worst = 0.0;
     for (std::size_t k = 0; k < parts.size(); ++k) parts_worst = std::max(parts_worst, worstOf(fits[k], parts[k]));

@@ -30,9 +30,10 @@
 //                  to these (its tolerance follows the diagonal; a pixel grid stays a
 //                  grid), so each is the same stroke up to rounding; but the model
 //                  selection can take another path on rounding alone. The table then
-//                  shows the distribution over all variants, which a change must
-//                  improve, not one path (the shared data's p99 moved between 83 and 230
-//                  ms across builds that differed only in a model's last digits).
+//                  shows the distribution over all variants. (It moves little: the
+//                  paths turn on thresholds that rounding seldom crosses, but a change of
+//                  ~1e-6 of a segment's length in the chain fit's model moved the shared
+//                  data's p99 anywhere between 83 and 230 ms.)
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // Google Benchmark's own flags (--benchmark_filter=glyphs, ...) work as usual.
 
