@@ -383,8 +383,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   auto hopelessNearby = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, std::size_t center, double keep_within) {
     const std::size_t n = e.pieces.size();
     const std::size_t lo = center >= 2 ? center - 2 : 0, hi = std::min(n, center + 2);
-    // (an edit of a chain whose fit placed no feet has none to pick the window's points by)
-    if (lo >= hi || 2 * (hi - lo) > n || e.feet.size() != points.size()) return false;
+    if (lo >= hi || 2 * (hi - lo) > n) return false;
     for (std::size_t i = lo; i < hi; ++i)
       if ((i > lo || i == 0) && e.pieces[i].atCorner()) return false;
     if (hi < n && e.pieces[hi].atCorner()) return false;

@@ -82,6 +82,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   constexpr std::size_t kOneSegmentStarts = 3;
   constexpr std::size_t kCurvatureWindows = 8;  // for the test of monotone curvature
   constexpr std::size_t kProfileSamples = 48;   // arc lengths the starts' turning is fitted at
+  constexpr double kAlphaStep = 0.25;           // of the grid of alphas the starts are made for
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
   // (`span` from the median step, then from the chords it gives: where the noise is as
@@ -163,16 +164,20 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   const double theta0 = angle.front() - 0.5 * k0 * chord;
   // (the alphas whose segments come nearest the points' length, the nearest first: a
   // spiral of several turns has local minima where a start lands on the wrong turn)
+  // (the kOneSegmentStarts of `starts` that miss least, the least first)
+  auto keepClosest = [](std::vector<std::pair<double, LaSegment>>& starts) {
+    std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    if (starts.size() > kOneSegmentStarts) starts.erase(starts.begin() + kOneSegmentStarts, starts.end());
+  };
   std::vector<std::pair<double, LaSegment>> starts;
-  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += 0.25) {
+  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += kAlphaStep) {
     try {
       const LaSegment seg = LaSegment::withTurning(alpha, turning, p.front(), theta0, k0, k1);
       starts.push_back({std::abs(seg.length() - length), seg});
     } catch (const std::invalid_argument&) {
     }
   }
-  std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  if (starts.size() > kOneSegmentStarts) starts.erase(starts.begin() + kOneSegmentStarts, starts.end());
+  keepClosest(starts);
   ChainFitOptions co = so.fit;
   co.min_length = so.tolerance;
   co.max_iterations = kOneSegmentIterations;
@@ -195,11 +200,10 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
     profile_angle.push_back(angle[j]);
   }
   std::vector<std::pair<double, LaSegment>> profiled;
-  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += 0.25)
+  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += kAlphaStep)
     if (auto fitted = profileSegment(alpha, length, p.front(), theta0, k0, k1, profile_s, profile_angle))
       profiled.push_back({fitted->second, fitted->first});
-  std::sort(profiled.begin(), profiled.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  if (profiled.size() > kOneSegmentStarts) profiled.erase(profiled.begin() + kOneSegmentStarts, profiled.end());
+  keepClosest(profiled);
   starts.insert(starts.begin(), profiled.begin(), profiled.end());
   // (each start as it is, then with its end shot onto the last point: a spiral's far
   // turns follow its end, but a shot from a poor start curvature bends the law wrongly)

@@ -185,6 +185,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
     return std::max(f.max_dev, f.stray);
   };
+  // A one-LA-segment fit that misses the tolerance (oneSegmentPart) is kept where the
+  // chains of several miss it by more (`others`: their largest deviation or stray).
+  auto oneBeats = [&](PartFit& one, const Part& part, double others) {
+    return one.g2.usable() && !(others <= r.tolerance) && worstOf(one, part) < others;
+  };
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& context) {
     if (polishing && context.outOfTime()) {
@@ -203,13 +208,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       const auto tp = Clock::now();
       one = oneSegmentPart(part, context);
       r.timings.polish_ms += msSince(tp);
-      if (one && one->max_dev <= r.tolerance) return *one;
+      if (one && one->max_dev <= r.tolerance) return std::move(*one);
     }
-    auto orOne = [&](PartFit&& fit) {
-      if (one && one->g2.usable() && !(worstOf(fit, part) <= r.tolerance) && worstOf(*one, part) < worstOf(fit, part))
-        return std::move(*one);
-      return std::move(fit);
-    };
+    auto orOne = [&](PartFit&& fit) { return one && oneBeats(*one, part, worstOf(fit, part)) ? std::move(*one) : std::move(fit); };
     PartFit fit = fitPart(part, context, polishing);
     if (polishing && fit.segments.size() > polish_room) {
       if (!r.over_polish_limit)
@@ -291,13 +292,14 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // segment comes first; the tight inner turns of a spiral pass for corners). One that
   // misses it is kept for the end, in case the parts miss it by more (below).
   std::optional<PartFit> one;
-  Part whole{r.cleaned.points, false, false, false};
+  Part whole;  // (the whole stroke as one part: only where it is tried so)
   if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.outOfTime()) {
     const auto tp = Clock::now();
+    whole.points = r.cleaned.points;
     one = oneSegmentPart(whole, context);
     r.timings.polish_ms += msSince(tp);
     if (one && one->max_dev <= r.tolerance) {
-      parts = {whole};
+      parts = {std::move(whole)};
       fits.push_back(std::move(*one));
       r.cleaned.corners.clear();
       one.reset();
@@ -362,11 +364,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // noisy spiral of four turns, whose tight inner turns the clean-up read as two corners,
   // came out of its parts 17 tolerances astray, where its one segment missed by the chain
   // fit's own measure of its distances only (0.91 of the tolerance by the quality figures').
-  if (one && one->g2.usable()) {
+  if (one) {
     double parts_worst = 0.0;
     for (std::size_t k = 0; k < parts.size(); ++k) parts_worst = std::max(parts_worst, worstOf(fits[k], parts[k]));
-    if (!(parts_worst <= r.tolerance) && worstOf(*one, whole) < parts_worst) {
-      parts = {whole};
+    if (oneBeats(*one, whole, parts_worst)) {
+      parts = {std::move(whole)};
       fits = {std::move(*one)};
       r.cleaned.corners.clear();
     }
