@@ -17,6 +17,13 @@ constexpr double kCurveStepPixels = 3.0;
 constexpr int kMinSamplesPerSegment = 8, kMaxSamplesPerSegment = 2000;
 constexpr double kResampleZoomIn = 2.0, kResampleZoomOut = 8.0;
 
+QPointF widgetPoint(const QTransform& view, const StrokeSample& sample) {
+  return view.map(QPointF(sample.p.x(), sample.p.y()));
+}
+
+// An ink width in whole kInkWidthStep, at least one.
+int inkWidthSteps(double width) { return std::max(1, static_cast<int>(std::lround(width / kInkWidthStep))); }
+
 }  // namespace
 
 std::vector<std::size_t> decimatedIndices(const std::vector<StrokeSample>& points, const QTransform& view,
@@ -27,7 +34,7 @@ std::vector<std::size_t> decimatedIndices(const std::vector<StrokeSample>& point
   std::vector<std::size_t> kept;
   std::unordered_set<std::uint64_t> cells;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const QPointF q = view.map(QPointF(points[i].p.x(), points[i].p.y()));
+    const QPointF q = widgetPoint(view, points[i]);
     if (!std::isfinite(q.x()) || !std::isfinite(q.y())) continue;
     const auto cx = static_cast<std::int64_t>(std::floor(q.x() / step)), cy = static_cast<std::int64_t>(std::floor(q.y() / step));
     const std::uint64_t cell = (static_cast<std::uint64_t>(cx) << 32) ^ static_cast<std::uint32_t>(cy);
@@ -38,7 +45,7 @@ std::vector<std::size_t> decimatedIndices(const std::vector<StrokeSample>& point
 
 QPolygonF decimatedPoints(const std::vector<StrokeSample>& points, const QTransform& view, double step) {
   QPolygonF out;
-  for (std::size_t i : decimatedIndices(points, view, step)) out << view.map(QPointF(points[i].p.x(), points[i].p.y()));
+  for (std::size_t i : decimatedIndices(points, view, step)) out << widgetPoint(view, points[i]);
   return out;
 }
 
@@ -77,10 +84,10 @@ void drawPressureInk(QPainter& p, const std::vector<StrokeSample>& points, const
   const std::vector<double> widths = inkWidths(points, width);
   const std::vector<std::size_t> kept = decimatedIndices(points, view, kInkStepPixels);
   if (kept.empty()) return;
-  auto at = [&](std::size_t i) { return view.map(QPointF(points[i].p.x(), points[i].p.y())); };
+  auto at = [&](std::size_t i) { return widgetPoint(view, points[i]); };
   auto stepOf = [&](std::size_t k) {  // the width from kept[k] to the next, in kInkWidthStep
     const std::size_t i = kept[k], j = kept[std::min(k + 1, kept.size() - 1)];
-    return std::max(1, static_cast<int>(std::lround(0.5 * (widths[i] + widths[j]) / kInkWidthStep)));
+    return inkWidthSteps(0.5 * (widths[i] + widths[j]));
   };
   // (runs of one width as one polyline: pressure changes slowly, and a polyline with round
   // joins strokes far faster than its steps as lines with round caps)
@@ -129,8 +136,7 @@ void drawPressureDots(QPainter& p, const std::vector<StrokeSample>& points, cons
   const std::vector<double> widths = inkWidths(points, width);
   std::map<int, QPolygonF> by_width;  // in kInkWidthStep
   for (std::size_t i : decimatedIndices(points, view))
-    by_width[std::max(1, static_cast<int>(std::lround(widths[i] / kInkWidthStep)))]
-        << view.map(QPointF(points[i].p.x(), points[i].p.y()));
+    by_width[inkWidthSteps(widths[i])] << widgetPoint(view, points[i]);
   for (const auto& [step, at] : by_width) drawDots(p, at, color, step * kInkWidthStep);
 }
 
