@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "core/least_squares.h"
 #include "core/quadrature.h"
 
 namespace la {
@@ -32,6 +33,7 @@ constexpr StartPoint kStarts[] = {{1.0, 0.0}, {1.6, 0.0}, {0.8, 0.0}, {1.0, 2.0}
 // Levenberg-Marquardt damping bounds: beyond kMaxDamping no step reduces |F|, a
 // local minimum that is not a solution.
 constexpr double kInitialDamping = 1e-4;
+constexpr double kMinDamping = 1e-12;
 constexpr double kMaxDamping = 1e14;
 // log L stays in [log 1e-3, log 1e3] of the chord: no designer's curve is 1000 chords long.
 constexpr double kMinLogLength = -6.9, kMaxLogLength = 6.9;
@@ -168,8 +170,9 @@ struct Attempt {
   bool grid_exhausted = false;
 };
 
-// Levenberg-Marquardt from (log_l, u) on the evaluator's grid, refining the grid when
-// the turning per panel grows past kMaxPanelTurning.
+// Levenberg-Marquardt (core/least_squares.h) from (log_l, u) on the evaluator's grid,
+// refining the grid when the turning per panel grows past kMaxPanelTurning; a step
+// changes L by at most a factor e.
 Attempt levenbergMarquardt(Evaluator& ev, double log_l, double u, double tol, int max_iterations) {
   Attempt at;
   at.log_l = log_l;
@@ -186,54 +189,40 @@ Attempt levenbergMarquardt(Evaluator& ev, double log_l, double u, double tol, in
     at.grid_exhausted = true;
     return at;
   }
-  Eigen::Vector2d F;
-  Eigen::Matrix2d J;
-  ev.evaluate(at.log_l, at.u, F, &J);
-  double damping = kInitialDamping;
-  for (int iter = 1; iter <= max_iterations; ++iter) {
-    at.iterations = iter;
-    at.residual = F.norm();
-    if (!std::isfinite(at.residual)) return at;
-    if (at.residual <= tol) {
-      at.converged = true;
-      return at;
-    }
-    const Eigen::Matrix2d JtJ = J.transpose() * J;
-    const Eigen::Vector2d g = J.transpose() * F;
-    bool stepped = false;
-    while (damping <= kMaxDamping) {
-      Eigen::Matrix2d A = JtJ;
-      const double scale = std::max(JtJ.diagonal().maxCoeff(), 1e-300);
-      A.diagonal().array() += damping * scale;
-      Eigen::Vector2d step = -A.ldlt().solve(g);
-      if (!step.allFinite()) {
-        damping *= 10.0;
-        continue;
-      }
-      if (std::abs(step[0]) > 1.0) step *= 1.0 / std::abs(step[0]);  // at most a factor e in L per step
-      const double ll = std::clamp(at.log_l + step[0], kMinLogLength, kMaxLogLength), uu = at.u + step[1];
-      if (!fitGrid(ll, uu)) {
-        damping *= 10.0;
-        continue;
-      }
-      Eigen::Vector2d F_new;
-      ev.evaluate(ll, uu, F_new, nullptr);
-      if (F_new.norm() < at.residual) {
-        at.log_l = ll;
-        at.u = uu;
-        F = F_new;
-        ev.evaluate(at.log_l, at.u, F, &J);
-        damping = std::max(damping * 0.1, 1e-12);
-        stepped = true;
-        break;
-      }
-      damping *= 10.0;
-    }
-    if (!stepped) return at;  // a local minimum of |F| that is not a solution
-  }
-  at.residual = F.norm();
-  at.converged = at.residual <= tol;
-  at.out_of_iterations = !at.converged;
+  LeastSquaresProblem problem;
+  problem.residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    if (!fitGrid(x[0], x[1])) return false;
+    Eigen::Vector2d f;
+    ev.evaluate(x[0], x[1], f, nullptr);
+    r = f;
+    return true;
+  };
+  problem.jacobian = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& jacobian) {
+    Eigen::Vector2d f;
+    Eigen::Matrix2d j;
+    ev.evaluate(x[0], x[1], f, &j);
+    r = f;
+    jacobian = j;
+    return true;
+  };
+  LeastSquaresOptions options;
+  options.max_iterations = max_iterations;
+  options.tolerance = tol;
+  options.initial_damping = kInitialDamping;
+  options.min_damping = kMinDamping;
+  options.max_damping = kMaxDamping;
+  options.max_step = 1.0;
+  options.step_weight = Eigen::Vector2d(1.0, 0.0);
+  options.lower = Eigen::Vector2d(kMinLogLength, -INFINITY);
+  options.upper = Eigen::Vector2d(kMaxLogLength, INFINITY);
+  Eigen::VectorXd x = Eigen::Vector2d(log_l, u), r;
+  const LeastSquaresSummary summary = solveLeastSquares(problem, x, r, options);
+  at.log_l = x[0];
+  at.u = x[1];
+  at.residual = summary.final_cost;
+  at.iterations = summary.successful_steps;
+  at.converged = summary.end == LeastSquaresEnd::kConverged;
+  at.out_of_iterations = summary.end == LeastSquaresEnd::kIterationLimit;
   return at;
 }
 

@@ -553,7 +553,11 @@ double yScale(const Problem& pb, double length) {
   return std::abs(pb.yOf(k));
 }
 
-/// Damped Newton on the fast model from x, then verification and polishing.
+/// Damped Newton on the fast model from x, then verification and polishing. Its own
+/// iteration, not core/least_squares.h's: the last full step is taken unevaluated where
+/// quadratic convergence predicts it lands (kSkipConfirmFactor), a step must lower the
+/// largest residual by a margin that shrinks with the step, and steps that stay damped
+/// end the solve (it is crawling to the domain's edge).
 Attempt newtonSolve(const Problem& pb, Vars x, const TripleLaHermiteOptions& opt, Workspace& ws) {
   Attempt at;
   Evaluation ev = evaluate(pb, x, ws);

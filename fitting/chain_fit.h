@@ -49,7 +49,11 @@
 // the rigid motion the earlier segments give its start. Levenberg-Marquardt with the
 // bounds and constraints in each step's KKT system, geodesic acceleration and a
 // second-order correction, on bins of the points (the unknowns are few: about 3 per
-// segment; ChainFitOptions::max_points).
+// segment; ChainFitOptions::max_points). The iteration is the fit's own, not
+// ceres::Solver's nor core/least_squares.h's: a closed chain's closure and a fixed end
+// are equality constraints in every step (Ceres has bounds but no equality
+// constraints), and geodesic acceleration needs the model's second derivative along
+// the step.
 
 #include <chrono>
 #include <vector>

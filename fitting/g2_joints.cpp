@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/least_squares.h"
 #include "core/root_finding.h"
 
 namespace la {
@@ -16,7 +17,8 @@ namespace {
 constexpr double kAngleStep = 1e-7;
 // Largest change of any joint angle in one Newton step (radians).
 constexpr double kMaxAngleStep = 0.3;
-constexpr int kMaxHalvings = 12;
+// Halvings of a Newton step that does not shrink the largest gap.
+constexpr int kMaxHalvings = 11;
 
 class JointSystem {
  public:
@@ -99,16 +101,33 @@ class JointSystem {
   std::vector<std::size_t> equations_;  // joints with a curvature equation
 };
 
+// Newton on the joint unknowns (core/least_squares.h): every equation's gap must
+// shrink (the cost is the largest), a step turns no joint by more than kMaxAngleStep and
+// is halved while it does not help; the Jacobian by forward differences, one joint at a
+// time (two piece solves each, to the other side where the forward step leaves the
+// feasible range).
 SolveReport newton(JointSystem& sys, const G2Options& options) {
   const auto& eq = sys.equations();
   const int m = static_cast<int>(eq.size());
-  Eigen::VectorXd f = sys.residual();
-  for (int iter = 0; iter <= options.max_iterations; ++iter) {
-    const double worst = sys.maxRelGap();
-    if (worst <= options.threshold) return {SolveStatus::kConverged, iter, worst, "G2 by Newton"};
-    if (iter == options.max_iterations) break;
-    // Jacobian by forward differences, one joint at a time (two piece solves each).
-    Eigen::MatrixXd jac(m, m);
+  Eigen::VectorXd x(m), at(m);  // at: the unknowns the system's pieces are solved for
+  for (int k = 0; k < m; ++k) x[k] = at[k] = sys.unknown(eq[k]);
+  bool solved = true;  // (makeG2 solved them)
+  auto moveTo = [&](const Eigen::VectorXd& to) {
+    if (to == at) return solved;
+    for (int k = 0; k < m; ++k) sys.setUnknown(eq[k], to[k]);
+    at = to;
+    return solved = sys.solveAll();
+  };
+  std::string infeasible;
+  LeastSquaresProblem problem;
+  problem.residual = [&](const Eigen::VectorXd& to, Eigen::VectorXd& f) {
+    if (!moveTo(to)) return false;
+    f = sys.residual();
+    return true;
+  };
+  problem.converged = [&](const Eigen::VectorXd&, const Eigen::VectorXd&) { return sys.maxRelGap() <= options.threshold; };
+  problem.jacobian = [&](const Eigen::VectorXd&, Eigen::VectorXd& f, Eigen::MatrixXd& jac) {
+    jac.resize(m, m);
     for (int k = 0; k < m; ++k) {
       const double saved = sys.unknown(eq[k]);
       sys.setUnknown(eq[k], saved + kAngleStep);
@@ -118,36 +137,33 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
       sys.solveAround(eq[k]);
       if (!ok) {  // step to the other side
         sys.setUnknown(eq[k], saved - kAngleStep);
-        if (!sys.solveAround(eq[k])) return {SolveStatus::kInfeasible, iter, worst, "joint " + std::to_string(eq[k]) + " is at the edge of feasibility"};
+        if (!sys.solveAround(eq[k])) {
+          infeasible = "joint " + std::to_string(eq[k]) + " is at the edge of feasibility";
+          return false;
+        }
         jac.col(k) = (f - sys.residual()) / kAngleStep;
         sys.setUnknown(eq[k], saved);
         sys.solveAround(eq[k]);
       }
     }
-    Eigen::VectorXd step = jac.fullPivLu().solve(-f);
-    if (!step.allFinite()) return {SolveStatus::kIterationLimit, iter, worst, "singular G2 Jacobian"};
-    const double biggest = step.cwiseAbs().maxCoeff();
-    if (biggest > kMaxAngleStep) step *= kMaxAngleStep / biggest;
-    std::vector<double> start(m);
-    for (int k = 0; k < m; ++k) start[k] = sys.unknown(eq[k]);
-    bool accepted = false;
-    double lambda = 1.0;
-    for (int h = 0; h < kMaxHalvings && !accepted; ++h, lambda *= 0.5) {
-      for (int k = 0; k < m; ++k) sys.setUnknown(eq[k], start[k] + lambda * step[k]);
-      if (!sys.solveAll()) continue;
-      const Eigen::VectorXd trial = sys.residual();
-      if (trial.cwiseAbs().maxCoeff() < f.cwiseAbs().maxCoeff()) {
-        f = trial;
-        accepted = true;
-      }
-    }
-    if (!accepted) {
-      for (int k = 0; k < m; ++k) sys.setUnknown(eq[k], start[k]);
-      sys.solveAll();
-      return {SolveStatus::kIterationLimit, iter + 1, worst, "G2 Newton stalled (no step reduces the gaps)"};
-    }
+    return true;
+  };
+  LeastSquaresOptions o;
+  o.max_iterations = options.max_iterations;
+  o.cost = LeastSquaresCost::kLargest;
+  o.max_halvings = kMaxHalvings;
+  o.max_step = kMaxAngleStep;
+  Eigen::VectorXd f;
+  const LeastSquaresSummary s = solveLeastSquares(problem, x, f, o);
+  moveTo(x);
+  const int steps = s.successful_steps;
+  switch (s.end) {
+    case LeastSquaresEnd::kConverged: return {SolveStatus::kConverged, steps, sys.maxRelGap(), "G2 by Newton"};
+    case LeastSquaresEnd::kNoJacobian: return {SolveStatus::kInfeasible, steps, sys.maxRelGap(), infeasible};
+    case LeastSquaresEnd::kNoDescent:
+      return {SolveStatus::kIterationLimit, steps + 1, sys.maxRelGap(), "G2 Newton stalled (" + s.message + ")"};
+    default: return {SolveStatus::kIterationLimit, steps, sys.maxRelGap(), "G2 Newton: iteration limit"};
   }
-  return {SolveStatus::kIterationLimit, options.max_iterations, sys.maxRelGap(), "G2 Newton: iteration limit"};
 }
 
 // The paper's method: the joint with the largest gap is bisected to zero gap, repeatedly.

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/least_squares.h"
 #include "fitting/chain_fit.h"
 #include "fitting/paper_stages.h"
 
@@ -110,48 +111,49 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
 std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double theta0, double kappa_start,
                                       double kappa_end, double alpha, double min_alpha, double max_alpha,
                                       const Vec2& target) {
-  // unknowns: y = log|kappa_end| (when not an inflection), alpha
+  // Unknowns x: y = log|kappa_end| where the end is no inflection, and alpha. Gauss-
+  // Newton steps (core/least_squares.h), damped a little, each unknown's by at most 1,
+  // on the miss of the end point with numeric derivatives; it stops at the first step
+  // that does not bring the end closer.
   const bool free_end = kappa_end != 0.0;
   const double end_sign = kappa_end < 0.0 ? -1.0 : 1.0;
-  double y = free_end ? std::log(std::abs(kappa_end)) : 0.0;
-  auto build = [&](double yy, double aa) -> std::optional<LaSegment> {
+  auto build = [&](const Eigen::VectorXd& x) -> std::optional<LaSegment> {
     try {
-      return LaSegment::withTurning(aa, turning, start, theta0, kappa_start, free_end ? end_sign * std::exp(yy) : 0.0);
+      return LaSegment::withTurning(x[x.size() - 1], turning, start, theta0, kappa_start,
+                                    free_end ? end_sign * std::exp(x[0]) : 0.0);
     } catch (const std::invalid_argument&) {
       return std::nullopt;
     }
   };
-  auto miss = [&](double yy, double aa) -> std::optional<Vec2> {
-    const auto seg = build(yy, aa);
-    if (!seg) return std::nullopt;
-    return Vec2(seg->end() - target);
+  constexpr double kStep = 1e-4;  // (of the numeric derivatives)
+  LeastSquaresProblem problem;
+  problem.residual = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r) {
+    const auto seg = build(x);
+    if (seg) r = seg->end() - target;
+    return seg.has_value();
   };
-  constexpr int kShootingSteps = 8;
-  constexpr double kStep = 1e-4;
-  for (int it = 0; it < kShootingSteps; ++it) {
-    const auto r = miss(y, alpha);
-    if (!r) break;
-    Eigen::Matrix<double, 2, 2> jac = Eigen::Matrix<double, 2, 2>::Zero();
-    const auto ra = miss(y, alpha + kStep);
-    if (!ra) break;
-    jac.col(1) = (*ra - *r) / kStep;
-    if (free_end) {
-      const auto ry = miss(y + kStep, alpha);
-      if (!ry) break;
-      jac.col(0) = (*ry - *r) / kStep;
+  problem.jacobian = [&](const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& jac) {
+    jac.resize(2, x.size());
+    Eigen::VectorXd moved = x, r_moved;
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      moved[i] = x[i] + kStep;
+      if (!problem.residual(moved, r_moved)) return false;
+      jac.col(i) = (r_moved - r) / kStep;
+      moved[i] = x[i];
     }
-    // least-squares step, damped a little, both unknowns limited in size
-    Eigen::Matrix2d a = jac.transpose() * jac;
-    a.diagonal() += Eigen::Vector2d::Constant(1e-9 * std::max(1.0, a.trace()));
-    const Eigen::Vector2d step = a.ldlt().solve(-jac.transpose() * *r);
-    if (!step.allFinite()) break;
-    const double ny = y + std::clamp(step[0], -1.0, 1.0), na = std::clamp(alpha + std::clamp(step[1], -1.0, 1.0), min_alpha, max_alpha);
-    const auto rn = miss(ny, na);
-    if (!rn || rn->norm() >= r->norm()) break;
-    y = ny;
-    alpha = na;
-  }
-  return build(y, alpha);
+    return true;
+  };
+  LeastSquaresOptions options;
+  options.max_iterations = 8;
+  options.initial_damping = options.min_damping = options.max_damping = 1e-9;
+  options.damping_floor = 1.0;
+  options.max_step = 1.0;
+  options.clamp_step = true;
+  options.lower = Eigen::Vector2d(-INFINITY, min_alpha).tail(free_end ? 2 : 1);
+  options.upper = Eigen::Vector2d(INFINITY, max_alpha).tail(free_end ? 2 : 1);
+  Eigen::VectorXd x = Eigen::Vector2d(free_end ? std::log(std::abs(kappa_end)) : 0.0, alpha).tail(free_end ? 2 : 1), r;
+  solveLeastSquares(problem, x, r, options);
+  return build(x);
 }
 
 // shotChain; with `halve`, where a shot segment is far longer or shorter than the
