@@ -211,8 +211,7 @@ Attempt levenbergMarquardt(Evaluator& ev, double log_l, double u, double tol, in
   options.initial_damping = kInitialDamping;
   options.min_damping = kMinDamping;
   options.max_damping = kMaxDamping;
-  options.max_step = 1.0;
-  options.step_weight = Eigen::Vector2d(1.0, 0.0);
+  options.max_step = Eigen::Vector2d(1.0, INFINITY);
   options.lower = Eigen::Vector2d(kMinLogLength, -INFINITY);
   options.upper = Eigen::Vector2d(kMaxLogLength, INFINITY);
   Eigen::VectorXd x = Eigen::Vector2d(log_l, u), r;

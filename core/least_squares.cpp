@@ -29,7 +29,7 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
     return problem.residual(at, res) && res.allFinite();
   };
   auto done = [&] {
-    return problem.converged ? problem.converged(x, r) : r.norm() <= options.tolerance;
+    return problem.converged ? problem.converged(x, r) : costOf(r) <= options.tolerance;
   };
   auto stop = [&](LeastSquaresEnd end, std::string message) {
     out.end = end;
@@ -40,7 +40,6 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
   if (!evaluate(x, r)) return stop(LeastSquaresEnd::kStartInvalid, "no residual at the start");
   out.initial_cost = costOf(r);
   const bool bounded = options.lower.size() == x.size() && options.upper.size() == x.size();
-  const bool weighted = options.step_weight.size() == x.size();
   double lambda = options.initial_damping;
   Eigen::MatrixXd jacobian;
   Eigen::VectorXd trial, trial_r;
@@ -74,14 +73,15 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
         if (damper()) continue;
         return stop(LeastSquaresEnd::kNoDescent, "singular Jacobian");
       }
-      if (options.clamp_step) {
+      const Eigen::VectorXd limit = problem.max_step ? problem.max_step(x) : options.max_step;
+      if (limit.size() == step.size()) {
+        double scale = 1.0;
         for (Eigen::Index i = 0; i < step.size(); ++i) {
-          const double w = weighted ? std::abs(options.step_weight[i]) : 1.0;
-          if (w * std::abs(step[i]) > options.max_step) step[i] = std::copysign(options.max_step / w, step[i]);
+          if (!(std::abs(step[i]) > limit[i])) continue;
+          if (options.clamp_step) step[i] = std::copysign(limit[i], step[i]);
+          else scale = std::min(scale, limit[i] / std::abs(step[i]));
         }
-      } else {
-        const double biggest = weighted ? options.step_weight.cwiseProduct(step).cwiseAbs().maxCoeff() : step.cwiseAbs().maxCoeff();
-        if (biggest > options.max_step) step *= options.max_step / biggest;
+        if (scale < 1.0) step *= scale;
       }
       double t = 1.0;
       for (int halving = 0; halving <= options.max_halvings && !accepted; ++halving, t *= 0.5) {

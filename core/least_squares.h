@@ -3,11 +3,12 @@
 // r(x) smallest, or zero. The project's multi-unknown shape solves share this one
 // iteration, as its scalar ones share core/root_finding.h: the G2 joint angles of
 // stage 6 (fitting/g2_joints.cpp), the end curvature and alpha of a segment shot at a
-// point (fitting/spline_chain.cpp) and the ALP Hermite solve (core/alp_hermite.cpp).
+// point (fitting/spline_chain.cpp), the ALP Hermite solve (core/alp_hermite.cpp) and
+// the triple-LA solve's start (core/triple_la_hermite.cpp, lawStart).
 //
 // Each step solves (J^T J + lambda d I) dx = -J^T r, d = max(trace(J^T J), a floor)
 // (Levenberg-Marquardt; lambda = 0 and a square J: the Newton step J dx = -r by
-// full-pivot LU). The step is limited (no |w_i dx_i| above max_step: the whole step
+// full-pivot LU). The step is limited (no |dx_i| above its max_step: the whole step
 // scaled down, or each entry clamped), x + dx is clamped to the bounds, and the step is
 // halved up to max_halvings times while the cost (|r|, or its largest entry) does not
 // fall; where no halving helps, lambda grows (up to max_damping, then the solve stops:
@@ -43,8 +44,10 @@ struct LeastSquaresProblem {
   /// J(x) at an accepted x whose residual is r (the callee may refresh r there); false:
   /// no Jacobian there, the solve stops.
   std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd& r, Eigen::MatrixXd& jacobian)> jacobian;
-  /// Done at x (unset: |r| <= LeastSquaresOptions::tolerance).
+  /// Done at x (unset: the cost at most LeastSquaresOptions::tolerance).
   std::function<bool(const Eigen::VectorXd& x, const Eigen::VectorXd& r)> converged;
+  /// The largest step of each unknown from x (unset: LeastSquaresOptions::max_step).
+  std::function<Eigen::VectorXd(const Eigen::VectorXd& x)> max_step;
 };
 
 enum class LeastSquaresCost {
@@ -54,7 +57,7 @@ enum class LeastSquaresCost {
 
 struct LeastSquaresOptions {
   int max_iterations = 50;
-  double tolerance = 0.0;  // |r| at which the solve has converged (unless the problem says)
+  double tolerance = 0.0;  // the cost at which the solve has converged (unless the problem says)
   LeastSquaresCost cost = LeastSquaresCost::kNorm;
   /// Levenberg-Marquardt's lambda, relative to the trace of J^T J (at least
   /// damping_floor): its start, its growth on a step that does not lower the cost, its
@@ -64,10 +67,9 @@ struct LeastSquaresOptions {
   double min_damping = 0.0, max_damping = 0.0, damping_floor = 1e-300;
   /// Halvings of a step that does not lower the cost, before lambda grows.
   int max_halvings = 0;
-  /// |step_weight_i dx_i| <= max_step for every i (empty weights: all 1), the whole step
-  /// scaled down (its direction kept) or, with clamp_step, each entry clamped.
-  double max_step = INFINITY;
-  Eigen::VectorXd step_weight;
+  /// |dx_i| <= max_step_i for every i (empty: no limit; an entry may be infinite), the
+  /// whole step scaled down (its direction kept) or, with clamp_step, each entry clamped.
+  Eigen::VectorXd max_step;
   bool clamp_step = false;
   /// Bounds on x (empty: none).
   Eigen::VectorXd lower, upper;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/least_squares.h"
 #include "core/quadrature.h"
 
 namespace la {
@@ -730,37 +731,41 @@ Vars lawStart(const Problem& pb, double length, const Vars& linear) {
     }
     return f.allFinite() && jac.allFinite();
   };
-  Eigen::Vector2d y12(linear[1], linear[2]), f;
-  Eigen::Matrix2d jac;
-  if (!conditions(y12, f, jac)) return linear;
-  double norm = f.lpNorm<Eigen::Infinity>();
-  for (int iteration = 0; iteration < kLawStartIterations && norm > kLawStartTolerance; ++iteration) {
-    Eigen::Vector2d step = -jac.fullPivLu().solve(f);
-    if (!step.allFinite()) return linear;
-    double scale = 1.0;  // the fast Newton's step limits
-    for (int i = 0; i < 2; ++i) {
-      const double limit = pb.signed_power ? kMaxRelativeQStep * std::max(std::abs(y12[i]), yScale(pb, length))
-                                           : kMaxLogKappaStep;
-      if (std::abs(step[i]) > limit) scale = std::min(scale, limit / std::abs(step[i]));
+  // Newton steps (core/least_squares.h) on the largest condition, with the fast
+  // Newton's step limits; a trial's Jacobian comes with its conditions, kept for the
+  // step after it.
+  Eigen::Vector2d at(NAN, NAN);
+  Eigen::Matrix2d jac_at;
+  LeastSquaresProblem problem;
+  problem.residual = [&](const Eigen::VectorXd& y12, Eigen::VectorXd& r) {
+    Eigen::Vector2d f;
+    if (!conditions(y12, f, jac_at)) return false;
+    at = y12;
+    r = f;
+    return true;
+  };
+  problem.jacobian = [&](const Eigen::VectorXd& y12, Eigen::VectorXd& r, Eigen::MatrixXd& jac) {
+    if (y12 != at) {
+      Eigen::Vector2d f;
+      if (!conditions(y12, f, jac_at)) return false;
+      at = y12;
+      r = f;
     }
-    bool accepted = false;
-    for (int halving = 0; halving < kMaxHalvings && !accepted; ++halving, scale *= 0.5) {
-      const Eigen::Vector2d y_try = y12 + scale * step;
-      Eigen::Vector2d f_try;
-      Eigen::Matrix2d jac_try;
-      if (!conditions(y_try, f_try, jac_try)) continue;
-      const double norm_try = f_try.lpNorm<Eigen::Infinity>();
-      if (norm_try < norm) {
-        y12 = y_try;
-        f = f_try;
-        jac = jac_try;
-        norm = norm_try;
-        accepted = true;
-      }
-    }
-    if (!accepted) break;
-  }
-  if (!(norm <= kLawStartTolerance)) return linear;
+    jac = jac_at;
+    return true;
+  };
+  problem.max_step = [&](const Eigen::VectorXd& y12) -> Eigen::VectorXd {
+    if (!pb.signed_power) return Eigen::Vector2d::Constant(kMaxLogKappaStep);
+    const double floor = yScale(pb, length);
+    return kMaxRelativeQStep * y12.cwiseAbs().cwiseMax(floor);
+  };
+  LeastSquaresOptions options;
+  options.max_iterations = kLawStartIterations;
+  options.tolerance = kLawStartTolerance;
+  options.cost = LeastSquaresCost::kLargest;
+  options.max_halvings = kMaxHalvings - 1;
+  Eigen::VectorXd y12 = Eigen::Vector2d(linear[1], linear[2]), r;
+  if (solveLeastSquares(problem, y12, r, options).end != LeastSquaresEnd::kConverged) return linear;
   return {linear[0], y12[0], y12[1]};
 }
 

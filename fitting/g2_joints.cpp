@@ -152,7 +152,7 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
   o.max_iterations = options.max_iterations;
   o.cost = LeastSquaresCost::kLargest;
   o.max_halvings = kMaxHalvings;
-  o.max_step = kMaxAngleStep;
+  o.max_step = Eigen::VectorXd::Constant(m, kMaxAngleStep);
   Eigen::VectorXd f;
   const LeastSquaresSummary s = solveLeastSquares(problem, x, f, o);
   moveTo(x);

@@ -147,7 +147,7 @@ std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double 
   options.max_iterations = 8;
   options.initial_damping = options.min_damping = options.max_damping = 1e-9;
   options.damping_floor = 1.0;
-  options.max_step = 1.0;
+  options.max_step = Eigen::VectorXd::Ones(free_end ? 2 : 1);
   options.clamp_step = true;
   options.lower = Eigen::Vector2d(-INFINITY, min_alpha).tail(free_end ? 2 : 1);
   options.upper = Eigen::Vector2d(INFINITY, max_alpha).tail(free_end ? 2 : 1);

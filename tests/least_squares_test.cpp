@@ -132,7 +132,7 @@ TEST(LeastSquares, AStepLimitScalesTheStepOrClampsEachUnknown) {
       return r.norm() <= 1e-12;
     };
     LeastSquaresOptions o;
-    o.max_step = 0.5;
+    o.max_step = Eigen::Vector2d::Constant(0.5);
     o.clamp_step = clamp;
     Eigen::VectorXd x = Eigen::Vector2d::Zero(), r;
     const LeastSquaresSummary s = solveLeastSquares(p, x, r, o);
