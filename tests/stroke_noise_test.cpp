@@ -16,14 +16,14 @@
 namespace la {
 namespace {
 
-// A circle of radius 200 sampled every 2 units over 1.5 radians, with Gaussian noise
-// `sigma` on each coordinate (std::mt19937, seed 7).
-std::vector<Vec2> noisyArc(double sigma) {
+// A circle of radius 200 sampled every 2 units over 1.5 radians (or every 2 / k units,
+// k = points / 150), with Gaussian noise `sigma` on each coordinate (std::mt19937, seed 7).
+std::vector<Vec2> noisyArc(double sigma, int points = 150) {
   std::mt19937 rng(7);
   std::normal_distribution<double> jitter(0.0, sigma);
   std::vector<Vec2> p;
-  for (int i = 0; i <= 150; ++i) {
-    const double a = 0.01 * i;
+  for (int i = 0; i <= points; ++i) {
+    const double a = 1.5 * i / points;
     p.emplace_back(200.0 * std::cos(a) + (sigma > 0 ? jitter(rng) : 0.0), 200.0 * std::sin(a) + (sigma > 0 ? jitter(rng) : 0.0));
   }
   return p;
@@ -36,6 +36,31 @@ TEST(StrokeNoise, GaussianJitterOnAnArcIsRecovered) {
     EXPECT_NEAR(n.floor, 4.0 * n.sigma, 1e-12);
     EXPECT_FALSE(n.on_grid);
   }
+}
+
+// The floor is where the largest of the points' deviations across the curve (normal,
+// sigma) goes beyond it with a chance of 1%, at least 4 sigma: 4 sigma up to about 160
+// points; for 2,000, k with 2000 erfc(k / sqrt 2) = 0.01 (4.56), so that the true curve
+// itself keeps the tolerance on them.
+TEST(StrokeNoise, TheFloorGrowsWithThePointsSoThatTheTrueCurveKeepsIt) {
+  const Noise few = noiseOf(noisyArc(0.5, 150));
+  EXPECT_NEAR(few.floor, 4.0 * few.sigma, 1e-12);
+  const Noise many = noiseOf(noisyArc(0.5, 2000));
+  const double k = many.floor / many.sigma;
+  EXPECT_NEAR(2001.0 * std::erfc(k / std::sqrt(2.0)), 0.01, 1e-6);
+  EXPECT_NEAR(k, 4.56, 0.01);
+  // and it is so: the largest normal deviation of 2,000 such points, over many draws,
+  // is beyond it about 1% of the time
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  int beyond = 0;
+  constexpr int kDraws = 5000;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    double most = 0.0;
+    for (int i = 0; i < 2001; ++i) most = std::max(most, std::abs(normal(rng)));
+    beyond += most > k;
+  }
+  EXPECT_NEAR(static_cast<double>(beyond) / kDraws, 0.01, 0.005);
 }
 
 TEST(StrokeNoise, ACleanCurveHasNextToNone) {
