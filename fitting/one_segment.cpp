@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -223,6 +224,29 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   return closest;
 }
 
+// A part's fit from stage 7's chain alone (no spline: stages 2-6 did not run), its
+// points' feet on it kept.
+PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
+  PartFit fit;
+  fit.segments = chain.segments;
+  for (std::size_t i = 0; i < fit.segments.size(); ++i) {
+    const LaSegment& s = fit.segments[i];
+    PieceReport report;
+    report.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+                  : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                        : PieceKind::kThreePoint;
+    report.alpha = s.alpha();
+    report.lcg_alpha = report.lcg_r2 = NAN;
+    if (i < chain.alpha_standard_error.size()) report.alpha_standard_error = chain.alpha_standard_error[i];
+    fit.reports.push_back(report);
+  }
+  fit.max_dev = chain.max_distance;
+  fit.feet = chain.feet;
+  fit.smoothing = {SolveStatus::kConverged, 0, 0.0, "not needed: " + what};
+  fit.g2 = {SolveStatus::kConverged, chain.report.iterations, 0.0, what + " (stage 7)"};
+  return fit;
+}
+
 }  // namespace
 
 std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context) {
@@ -231,21 +255,14 @@ std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& contex
   if (part.closed || part.starts_at_corner || part.ends_at_corner) return std::nullopt;
   const std::optional<ChainFitResult> one = oneSegment(part, stage7Selection(context), context.noise.sigma);
   if (!one) return std::nullopt;
-  PartFit fit;
-  fit.segments = one->segments;
-  PieceReport report;
-  const LaSegment& s = fit.segments.front();
-  report.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
-                : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
-                                      : PieceKind::kThreePoint;
-  report.alpha = s.alpha();
-  report.lcg_alpha = report.lcg_r2 = NAN;  // (no spline: stages 2-6 did not run)
-  if (!one->alpha_standard_error.empty()) report.alpha_standard_error = one->alpha_standard_error.front();
-  fit.reports = {report};
-  fit.max_dev = one->max_distance;
-  fit.smoothing = {SolveStatus::kConverged, 0, 0.0, "not needed: one LA segment"};
-  fit.g2 = {SolveStatus::kConverged, one->report.iterations, 0.0, "one LA segment (stage 7)"};
-  return fit;
+  return partFitOf(*one, "one LA segment");
+}
+
+std::optional<PartFit> splitOneSegment(const PartFit& one, const Part& part, const FitContext& context) {
+  if (one.segments.size() != 1 || one.feet.size() != part.points.size()) return std::nullopt;
+  const SelectionResult selected = selectChain(one.segments, part.points, one.feet, stage7Selection(context));
+  if (selected.fit.report.status == SolveStatus::kBadInput || selected.fit.segments.empty()) return std::nullopt;
+  return partFitOf(selected.fit, "one LA segment, split");
 }
 
 }  // namespace la

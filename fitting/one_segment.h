@@ -22,4 +22,13 @@ namespace la {
 /// tries a whole open stroke this way before the parts its corners cut it into.
 std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context);
 
+/// Where the part's one LA segment (oneSegmentPart, its feet in `one.feet`) misses the
+/// tolerance: stage 7's model selection from it, which splits it at its worst points
+/// (an LA segment's pieces are LA segments of its alpha: each split starts where the one
+/// segment was) and fits again, until the chain keeps the tolerance or the edits run
+/// out. A spiral that is no LA curve (an Archimedean one from its tight centre) is a few
+/// segments so, where stages 2-6 from its spline set off astray. Nullopt where the
+/// selection has no chain.
+std::optional<PartFit> splitOneSegment(const PartFit& one, const Part& part, const FitContext& context);
+
 }  // namespace la

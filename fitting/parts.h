@@ -30,7 +30,7 @@ struct PartFit {
   std::optional<CubicBSpline> spline;  // none for a straight part
   std::vector<SplitPoint> splits;
   std::vector<PieceReport> spans;  // every piece of the final segmentation (segments may differ after a failed G2)
-  std::vector<ChainFoot> feet;     // of the part's points on `spans` (from their spline parameters)
+  std::vector<ChainFoot> feet;     // of the part's points on `spans` (from their spline parameters), or on `segments` without a spline
   std::vector<double> parameters;  // the points' spline parameters
   std::vector<std::string> warnings;
   double max_dev = NAN;            // largest distance of the part's points from `segments`, once known

@@ -31,6 +31,9 @@ constexpr double kTighterThanTolerance = 1.0 + 1e-6;
 constexpr int kTightBendRounds = 2;
 // A corner put at a tight bend goes to the point turning most this many points about it.
 constexpr std::size_t kCornerReach = 2;
+// A part's one LA segment that misses the tolerance by at most this factor is a near
+// miss (fitOneWith).
+constexpr double kNearMiss = 1.1;
 
 // A straight stroke: its lines, a corner of pi where it turns back.
 void fitStraight(FitResult& r) {
@@ -191,7 +194,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     return one.g2.usable() && !(others <= r.tolerance) && worstOf(one, part) < others;
   };
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
-  auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& context) {
+  auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& given) {
+    FitContext context = given;
     if (polishing && context.outOfTime()) {
       // Out of time before this part: the paper's G2 chain (stages 2-6, a fraction of
       // stage 7's time) rather than the spline's shot chain, unfitted, which stage 7 would
@@ -203,14 +207,25 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // (one LA segment that misses the tolerance by a little: kept where the chains of
     // several miss it by more; a noisy spiral's chain path went 41 tolerances astray
     // where its one segment missed by a tenth)
-    std::optional<PartFit> one;
+    // Where it misses, stage 7 from it, split where it misses (splitOneSegment): kept if
+    // within the tolerance, else if closer than the chains from stages 2-6.
+    std::optional<PartFit> one, split;
     if (polishing) {
       const auto tp = Clock::now();
       one = oneSegmentPart(part, context);
+      if (one && one->max_dev > r.tolerance) split = splitOneSegment(*one, part, context);
       r.timings.polish_ms += msSince(tp);
       if (one && one->max_dev <= r.tolerance) return std::move(*one);
+      if (split && split->max_dev <= r.tolerance) return std::move(*split);
+      // (a near miss: the chains are worth only what beats it, and get about the time
+      // spent so far to find it; a noisy spiral whose true curve missed the tolerance by
+      // a few percent, as its one segment did, spent 1.3 s on chains that missed by more)
+      if (one && one->max_dev <= kNearMiss * r.tolerance) context.deadline = std::min(context.deadline, Clock::now() + (Clock::now() - start));
     }
-    auto orOne = [&](PartFit&& fit) { return one && oneBeats(*one, part, worstOf(fit, part)) ? std::move(*one) : std::move(fit); };
+    auto orOne = [&](PartFit&& fit) {
+      if (split && worstOf(*split, part) < worstOf(fit, part)) fit = std::move(*split);
+      return one && oneBeats(*one, part, worstOf(fit, part)) ? std::move(*one) : std::move(fit);
+    };
     PartFit fit = fitPart(part, context, polishing);
     if (polishing && fit.segments.size() > polish_room) {
       if (!r.over_polish_limit)
@@ -297,6 +312,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     const auto tp = Clock::now();
     whole.points = r.cleaned.points;
     one = oneSegmentPart(whole, context);
+    if (one && one->max_dev > r.tolerance)
+      if (auto split = splitOneSegment(*one, whole, context); split && split->max_dev <= r.tolerance) one = std::move(split);
     r.timings.polish_ms += msSince(tp);
     if (one && one->max_dev <= r.tolerance) {
       parts = {std::move(whole)};
