@@ -102,18 +102,36 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
     chord = meanChord(span);
   }
   if (m < 2 * span + 3) return std::nullopt;
-  std::vector<double> angle;  // of each chord p[i] -> p[i + span], followed along
-  for (std::size_t i = 0; i + span < m; ++i) {
-    const double a = angleOf(p[i + span] - p[i]);
-    angle.push_back(angle.empty() ? a : angle.back() + wrapAngle(a - angle.back()));
+  // Chord i runs from p[i] to p[ends[i]], `span` points on and at least kChordNoise noise
+  // sigmas long: where the stroke was drawn slowly (a spiral's centre, sampled densely)
+  // shorter chords turn with the noise by up to a radian, and followed along they
+  // gathered a whole turn too many or too few.
+  std::vector<std::size_t> ends;
+  for (std::size_t i = 0, j = span; i < m; ++i) {
+    j = std::max(j, i + span);
+    while (j < m && (p[j] - p[i]).norm() < kChordNoise * noise) ++j;
+    if (j >= m) break;
+    ends.push_back(j);
   }
-  // (the length from the chords, each standing for one of the m - 1 steps: noise
-  // lengthens the polyline between neighbours)
+  if (ends.size() < 3) return std::nullopt;
+  std::vector<double> angle, chord_length;  // of each chord, followed along
+  for (std::size_t i = 0; i < ends.size(); ++i) {
+    const double a = angleOf(p[ends[i]] - p[i]);
+    angle.push_back(angle.empty() ? a : angle.back() + wrapAngle(a - angle.back()));
+    chord_length.push_back((p[ends[i]] - p[i]).norm());
+  }
+  // (how far noise turns chord i: sqrt(2) noise / its length)
+  auto noiseTurn = [&](std::size_t i) { return noise / std::max(chord_length[i], 1e-300); };
+  // (the length from the chords, each standing for its steps' advance, each step counted
+  // once: noise lengthens the polyline between neighbours)
   double chords = 0.0;
-  for (std::size_t i = 0; i + span < m; ++i) chords += (p[i + span] - p[i]).norm() / static_cast<double>(span);
-  const double length = chords * static_cast<double>(m - 1) / static_cast<double>(m - span);
-  // (the first chord's direction is half a chord in, the last's half a chord short)
-  const double turning = (angle.back() - angle.front()) * static_cast<double>(m - 1) / static_cast<double>(m - 1 - span);
+  for (std::size_t i = 0; i < ends.size(); ++i) chords += chord_length[i] / static_cast<double>(ends[i] - i);
+  const double length = chords * static_cast<double>(m - 1) / static_cast<double>(ends.size());
+  // (a chord's direction is its middle's: the first's half a chord in, the last's half a
+  // chord short of the end)
+  const std::size_t last = angle.size() - 1;
+  const double middles = 0.5 * static_cast<double>(last + ends[last]) - 0.5 * static_cast<double>(ends[0]);
+  const double turning = (angle.back() - angle.front()) * static_cast<double>(m - 1) / middles;
   // (the selection's merges make a segment turning up to max_turning: only a part turning
   // further needs this)
   if (!(length > 0.0) || !(std::abs(turning) > so.max_turning)) return std::nullopt;
@@ -123,20 +141,24 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // smaller one that is real makes the fit miss. The furthest direction so far is itself
   // a maximum of noisy chords: at 8 sigmas a clothoid of one turn with noise of a fifth of
   // its step turned back by 9 and came out as four segments.)
-  const double slack = 16.0 * noise / chord;
-  double low = angle.front();
-  for (double a : angle) {
-    if ((a - low) * sign < -slack) return std::nullopt;
-    if ((a - low) * sign > 0.0) low = a;
+  std::size_t low = 0;
+  for (std::size_t i = 0; i < angle.size(); ++i) {
+    if ((angle[i] - angle[low]) * sign < -16.0 * std::max(noiseTurn(i), noiseTurn(low))) return std::nullopt;
+    if ((angle[i] - angle[low]) * sign > 0.0) low = i;
   }
   // (an LA segment's curvature is monotone: the turning of successive windows of the
   // chords may not rise and fall again, or fall and rise, by more than a quarter of the
-  // largest or four times what noise makes of a window's turning, 2 noise / chord)
+  // largest or four times what noise makes of a window's turning, 2 noise / chord at the
+  // window's ends, the shortest chord's)
   const std::size_t window = std::max<std::size_t>(3, angle.size() / kCurvatureWindows);
   std::vector<double> kappa;
-  for (std::size_t i = 0; i + window < angle.size(); i += window) kappa.push_back(std::abs(angle[i + window] - angle[i]));
+  double noisiest = 0.0;
+  for (std::size_t i = 0; i + window < angle.size(); i += window) {
+    kappa.push_back(std::abs(angle[i + window] - angle[i]));
+    noisiest = std::max({noisiest, noiseTurn(i), noiseTurn(i + window)});
+  }
   const double largest = *std::max_element(kappa.begin(), kappa.end());
-  const double reversal = std::max(0.25 * largest, 8.0 * noise / chord);
+  const double reversal = std::max(0.25 * largest, 8.0 * noisiest);
   double top = kappa.front(), bottom = kappa.front();
   int trend = 0;  // +1 rising, -1 falling, once a change beyond `reversal` shows it
   for (double k : kappa) {
@@ -153,16 +175,20 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // extrapolated to the end itself; at least a tenth of the mean, of the turning's sign)
   const std::size_t end = std::max<std::size_t>(3, static_cast<std::size_t>(kEnd * angle.size()));
   if (angle.size() < 2 * end + 1) return std::nullopt;
-  const double end_length = static_cast<double>(end) * length / static_cast<double>(angle.size());
+  // (arc length at each point along the polyline, scaled to `length`: noise lengthens the
+  // polyline; and at each chord's middle)
+  std::vector<double> along(m, 0.0);
+  for (std::size_t i = 1; i < m; ++i) along[i] = along[i - 1] + (p[i] - p[i - 1]).norm();
+  for (double& a : along) a *= length / along.back();
+  auto middle = [&](std::size_t i) { return 0.5 * (along[i] + along[ends[i]]); };
   const double mean = std::abs(turning) / length;
-  auto endKappa = [&](double first, double second) {
-    return sign * std::max(std::abs(1.5 * first - 0.5 * second) / end_length, 0.1 * mean);
-  };
-  const std::size_t last = angle.size() - 1;
-  const double k0 = endKappa(angle[end] - angle[0], angle[2 * end] - angle[end]);
-  const double k1 = endKappa(angle[last] - angle[last - end], angle[last - end] - angle[last - 2 * end]);
+  // (the curvature from chord a to chord b)
+  auto kappaOver = [&](std::size_t a, std::size_t b) { return (angle[b] - angle[a]) / std::max(middle(b) - middle(a), 1e-300); };
+  auto endKappa = [&](double first, double second) { return sign * std::max(std::abs(1.5 * first - 0.5 * second), 0.1 * mean); };
+  const double k0 = endKappa(kappaOver(0, end), kappaOver(end, 2 * end));
+  const double k1 = endKappa(kappaOver(last - end, last), kappaOver(last - 2 * end, last - end));
   // (the chords' tangent at the start: the first chord's, turned back by half of its bend)
-  const double theta0 = angle.front() - 0.5 * k0 * chord;
+  const double theta0 = angle.front() - 0.5 * k0 * chord_length.front();
   // (the alphas whose segments come nearest the points' length, the nearest first: a
   // spiral of several turns has local minima where a start lands on the wrong turn)
   // (the kOneSegmentStarts of `starts` that miss least, the least first)
@@ -184,8 +210,6 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   co.max_iterations = kOneSegmentIterations;
   // (each point's foot where its arc length puts it: found from scratch, a point could
   // take its foot on the neighbouring turn of a spiral)
-  std::vector<double> along(m, 0.0);  // arc length at each point along the polyline
-  for (std::size_t i = 1; i < m; ++i) along[i] = along[i - 1] + (p[i] - p[i - 1]).norm();
   std::vector<ChainFoot> feet(m, {0, 0.0});
   for (std::size_t i = 0; i < m; ++i) feet[i].u = along[i] / along.back();
   // Starts whose tangent follows the chords' directions (end curvatures and start tangent
@@ -193,11 +217,10 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // closest first): the end chords alone are noisy, and a spiral's fit from a start 20%
   // off in its end curvatures, or a few degrees off in its start tangent, lands on the
   // wrong turn.
-  for (double& a : along) a *= length / along.back();  // (noise lengthens the polyline)
   std::vector<double> profile_s, profile_angle;
   for (std::size_t k = 0; k < kProfileSamples; ++k) {
-    const std::size_t j = k * (angle.size() - 1) / (kProfileSamples - 1);
-    profile_s.push_back(0.5 * (along[j] + along[j + span]));  // (a chord's direction is its middle's)
+    const std::size_t j = k * last / (kProfileSamples - 1);
+    profile_s.push_back(middle(j));  // (a chord's direction is its middle's)
     profile_angle.push_back(angle[j]);
   }
   std::vector<std::pair<double, LaSegment>> profiled;

@@ -10,6 +10,10 @@
 // turn, those fitted as one segment, and the fit time per spiral (median, p90, max; one
 // core).
 //
+// Also Archimedean spirals drawn out from a tight centre (r = 5 + 60 theta / 2 pi: no LA
+// curve), the same turns, points and noise, the points at equal steps of the angle, so
+// their centre is sampled ten times as densely as their outer turns (BM_Archimedean).
+//
 //   build/tests/benchmarks/spiral_benchmark
 
 #include <benchmark/benchmark.h>
@@ -43,6 +47,48 @@ double distanceFrom(const LaSegment& truth, const Vec2& p, double s) {
   return (p - truth.position(s)).norm();
 }
 
+// The Archimedean spiral r = 5 + b theta, b = 60 / 2 pi, and the distance of p from it,
+// from its nearest point's angle near theta (Newton on (P - p) . P' = 0).
+constexpr double kArchimedeanStart = 5.0, kArchimedeanGrowth = 60.0 / (2.0 * std::numbers::pi);
+Vec2 archimedean(double theta) {
+  const double r = kArchimedeanStart + kArchimedeanGrowth * theta;
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+double distanceFromArchimedean(const Vec2& p, double theta, double turns) {
+  const double b = kArchimedeanGrowth;
+  for (int step = 0; step < 20; ++step) {
+    const double r = kArchimedeanStart + b * theta, c = std::cos(theta), s = std::sin(theta);
+    const Vec2 d = archimedean(theta) - p;
+    const Vec2 d1(b * c - r * s, b * s + r * c), d2(-2.0 * b * s - r * c, 2.0 * b * c - r * s);
+    const double f = d.dot(d1), df = d1.dot(d1) + d.dot(d2);
+    const double next = std::clamp(theta - f / std::max(df, 1e-300), 0.0, 2.0 * std::numbers::pi * turns);
+    if (std::abs(next - theta) < 1e-14) break;
+    theta = next;
+  }
+  return (archimedean(theta) - p).norm();
+}
+
+std::vector<Spiral> archimedeanSpirals() {
+  std::vector<Spiral> out;
+  for (double turns : {1.0, 2.5, 4.0})
+    for (int n : {200, 700, 2000})
+      for (double noise : {0.0, 0.1, 0.3})
+        for (unsigned seed : {1u, 2u}) {
+          if (noise == 0.0 && seed > 1u) continue;
+          std::mt19937 rng(seed);
+          std::normal_distribution<double> g(0.0, noise);
+          Spiral s{{}, turns};
+          for (int i = 0; i <= n; ++i) {
+            const double theta = 2.0 * std::numbers::pi * turns * i / n;
+            const Vec2 p = archimedean(theta);
+            s.stroke.samples.push_back({noise > 0.0 ? Vec2(p + Vec2(g(rng), g(rng))) : p});
+            s.truth_deviation = std::max(s.truth_deviation, distanceFromArchimedean(s.stroke.samples.back().p, theta, turns));
+          }
+          out.push_back(std::move(s));
+        }
+  return out;
+}
+
 std::vector<Spiral> spiralsOf(double alpha) {
   std::vector<Spiral> out;
   for (double turns : {1.0, 2.5, 4.0}) {
@@ -66,9 +112,7 @@ std::vector<Spiral> spiralsOf(double alpha) {
   return out;
 }
 
-void BM_Spirals(benchmark::State& state) {
-  const double alpha = static_cast<double>(state.range(0)) / 4.0;
-  const std::vector<Spiral> spirals = spiralsOf(alpha);
+void fitAll(benchmark::State& state, const std::vector<Spiral>& spirals) {
   int missed = 0, truth_kept_missed = 0, too_many = 0, one = 0;
   std::vector<double> ms;
   for (auto _ : state) {
@@ -93,8 +137,11 @@ void BM_Spirals(benchmark::State& state) {
   state.counters["ms_p90"] = ms[ms.size() * 9 / 10];
   state.counters["ms_max"] = ms.back();
 }
+void BM_Spirals(benchmark::State& state) { fitAll(state, spiralsOf(static_cast<double>(state.range(0)) / 4.0)); }
+void BM_Archimedean(benchmark::State& state) { fitAll(state, archimedeanSpirals()); }
 // alpha = range / 4: -2, -1, 0, 0.5, 1, 2
 BENCHMARK(BM_Spirals)->Arg(-8)->Arg(-4)->Arg(0)->Arg(2)->Arg(4)->Arg(8)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Archimedean)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace la
