@@ -31,8 +31,10 @@ constexpr double kTighterThanTolerance = 1.0 + 1e-6;
 constexpr int kTightBendRounds = 2;
 // A corner put at a tight bend goes to the point turning most this many points about it.
 constexpr std::size_t kCornerReach = 2;
-// A part's one LA segment that misses the tolerance by at most this factor is a near
-// miss (fitOneWith).
+// Where a part's one LA segment misses the tolerance, the chains from stages 2-6 get this
+// many times the time it took (fitOneWith); once, where it (or split) misses by at most
+// a tenth.
+constexpr int kChainPathTimes = 4;
 constexpr double kNearMiss = 1.1;
 
 // A straight stroke: its lines, a corner of pi where it turns back.
@@ -217,10 +219,14 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       r.timings.polish_ms += msSince(tp);
       if (one && one->max_dev <= r.tolerance) return std::move(*one);
       if (split && split->max_dev <= r.tolerance) return std::move(*split);
-      // (a near miss: the chains are worth only what beats it, and get about the time
-      // spent so far to find it; a noisy spiral whose true curve missed the tolerance by
-      // a few percent, as its one segment did, spent 1.3 s on chains that missed by more)
-      if (one && one->max_dev <= kNearMiss * r.tolerance) context.deadline = std::min(context.deadline, Clock::now() + (Clock::now() - start));
+      // (the chains from stages 2-6 are worth only what beats it, and get a few times the
+      // time it took, as much where it misses by a little: a noisy spiral whose true
+      // curve missed the tolerance by a few percent, as its one segment did, spent 1.3 s
+      // on chains that missed by more, and spirals drawn from their very centre up to 6 s)
+      if (one) {
+        const bool near = std::min(one->max_dev, split ? split->max_dev : INFINITY) <= kNearMiss * r.tolerance;
+        context.deadline = std::min(context.deadline, Clock::now() + (near ? 1 : kChainPathTimes) * (Clock::now() - tp));
+      }
     }
     auto orOne = [&](PartFit&& fit) {
       if (split && worstOf(*split, part) < worstOf(fit, part)) fit = std::move(*split);
