@@ -29,7 +29,8 @@ constexpr double kZeroEndAlpha = -1.0;
 // An edited piece's new free end or joint starts at this fraction of its neighbour's
 // curvature (the fit moves it).
 constexpr double kNewKappaFraction = 0.5;
-// A split cuts at the worst point's foot, kept this far from the segment's ends.
+// A split cuts at the worst point's foot, kept this far from the segment's ends (or
+// SelectionOptions::split_margin, where less).
 constexpr double kSplitMargin = 0.15;
 // A segment beside a corner shorter than this fraction of its neighbour in its part is a
 // collapse candidate (a hook).
@@ -582,7 +583,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const std::size_t worst = std::max_element(from.distance.begin(), from.distance.end()) - from.distance.begin();
     const ChainFoot at = from.feet[worst];
     const LaSegment& s = from.segments[at.segment];
-    const double u = std::clamp(at.u, kSplitMargin, 1.0 - kSplitMargin);
+    const double margin = std::min(kSplitMargin, options.split_margin / s.length());
+    const double u = std::clamp(at.u, margin, 1.0 - margin);
     ++edits;
     if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u));
     // (a line bends towards the worst point: the arc through its ends with that sagitta)

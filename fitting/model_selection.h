@@ -45,6 +45,7 @@
 // least 4: the four-vertex theorem), becomes the circle closest to its points.
 
 #include <chrono>
+#include <cmath>
 #include <vector>
 
 #include "fitting/chain_fit.h"
@@ -55,6 +56,10 @@ struct SelectionOptions {
   double tolerance = 0.0;     // max distance from any point to the chain (world units, > 0)
   double significance = 4.0;  // F threshold (about the 1% level for a few unknowns and many points)
   int max_edits = 12;         // splits, collapses and merges together
+  /// A split comes no closer to a segment's end than 15% of its length, or this (world
+  /// units) where less: a segment of a spiral's several turns is split where it misses,
+  /// near its tight centre.
+  double split_margin = INFINITY;
   int patience = 4;           // a fit outside the tolerance may take this many times fit.max_iterations more
   int reweighing_rounds = 8;  // Lawson rounds before a split (0: none)
   /// A segment turning less than this (radians) is a collapse candidate; a joint whose

@@ -247,6 +247,12 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   return closest;
 }
 
+// Where the splits of one segment at the selection's margin leave it outside the
+// tolerance, they come up to this many tolerances from a segment's end
+// (SelectionOptions::split_margin): a spiral's one segment misses at its centre, a few
+// percent of its length from its end.
+constexpr double kSplitMarginTolerances = 4.0;
+
 // A part's fit from stage 7's chain alone (no spline: stages 2-6 did not run), its
 // points' feet on it kept.
 PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
@@ -283,8 +289,16 @@ std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& contex
 
 std::optional<PartFit> splitOneSegment(const PartFit& one, const Part& part, const FitContext& context) {
   if (one.segments.size() != 1 || one.feet.size() != part.points.size()) return std::nullopt;
-  const SelectionResult selected = selectChain(one.segments, part.points, one.feet, stage7Selection(context));
+  SelectionOptions so = stage7Selection(context);
+  SelectionResult selected = selectChain(one.segments, part.points, one.feet, so);
   if (selected.fit.report.status == SolveStatus::kBadInput || selected.fit.segments.empty()) return std::nullopt;
+  if (selected.fit.max_distance > so.tolerance) {
+    // (again with splits nearer the ends, kept if closer)
+    so.split_margin = kSplitMarginTolerances * context.tolerance;
+    SelectionResult nearer = selectChain(one.segments, part.points, one.feet, so);
+    if (nearer.fit.report.status != SolveStatus::kBadInput && nearer.fit.max_distance < selected.fit.max_distance)
+      selected = std::move(nearer);
+  }
   return partFitOf(selected.fit, "one LA segment, split");
 }
 
