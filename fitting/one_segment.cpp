@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -247,10 +248,11 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   return closest;
 }
 
-// Where the splits of one segment at the selection's margin leave it outside the
-// tolerance, they come up to this many tolerances from a segment's end
-// (SelectionOptions::split_margin): a spiral's one segment misses at its centre, a few
-// percent of its length from its end.
+// Where the splits of one segment turning more than a full turn (a spiral) at the
+// selection's margin leave it outside the tolerance, they come up to this many
+// tolerances from a segment's end (SelectionOptions::split_margin): a spiral's one
+// segment misses at its centre, a few percent of its length from its end. (A stroke of
+// less, cut so, came out with fewer segments than the extrema it was drawn with.)
 constexpr double kSplitMarginTolerances = 4.0;
 
 // A part's fit from stage 7's chain alone (no spline: stages 2-6 did not run), its
@@ -292,8 +294,8 @@ std::optional<PartFit> splitOneSegment(const PartFit& one, const Part& part, con
   SelectionOptions so = stage7Selection(context);
   SelectionResult selected = selectChain(one.segments, part.points, one.feet, so);
   if (selected.fit.report.status == SolveStatus::kBadInput || selected.fit.segments.empty()) return std::nullopt;
-  if (selected.fit.max_distance > so.tolerance) {
-    // (again with splits nearer the ends, kept if closer)
+  if (selected.fit.max_distance > so.tolerance && std::abs(one.segments.front().turning()) > 2.0 * std::numbers::pi) {
+    // (a spiral of more than a turn: again with splits nearer the ends, kept if closer)
     so.split_margin = kSplitMarginTolerances * context.tolerance;
     SelectionResult nearer = selectChain(one.segments, part.points, one.feet, so);
     if (nearer.fit.report.status != SolveStatus::kBadInput && nearer.fit.max_distance < selected.fit.max_distance)
