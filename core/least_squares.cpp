@@ -52,6 +52,7 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
     const Eigen::MatrixXd jtj = jacobian.transpose() * jacobian;
     const Eigen::VectorXd gradient = jacobian.transpose() * r;
     const double scale = std::max(jtj.trace(), options.damping_floor);
+    const Eigen::VectorXd limit = problem.max_step ? problem.max_step(x) : options.max_step;
     // (a larger lambda, where one is allowed: the step got no lower cost)
     auto damper = [&] {
       const double next = lambda * options.damping_growth;
@@ -73,15 +74,14 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
         if (damper()) continue;
         return stop(LeastSquaresEnd::kNoDescent, "singular Jacobian");
       }
-      const Eigen::VectorXd limit = problem.max_step ? problem.max_step(x) : options.max_step;
       if (limit.size() == step.size()) {
-        double scale = 1.0;
+        double shrink = 1.0;
         for (Eigen::Index i = 0; i < step.size(); ++i) {
           if (!(std::abs(step[i]) > limit[i])) continue;
           if (options.clamp_step) step[i] = std::copysign(limit[i], step[i]);
-          else scale = std::min(scale, limit[i] / std::abs(step[i]));
+          else shrink = std::min(shrink, limit[i] / std::abs(step[i]));
         }
-        if (scale < 1.0) step *= scale;
+        if (shrink < 1.0) step *= shrink;
       }
       double t = 1.0;
       for (int halving = 0; halving <= options.max_halvings && !accepted; ++halving, t *= 0.5) {

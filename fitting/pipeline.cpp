@@ -206,11 +206,10 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       paper.max_dev = maxDeviationOf(paper.segments, part.points, diag);
       return paper;
     }
-    // (one LA segment that misses the tolerance by a little: kept where the chains of
-    // several miss it by more; a noisy spiral's chain path went 41 tolerances astray
-    // where its one segment missed by a tenth)
-    // Where it misses, stage 7 from it, split where it misses (splitOneSegment): kept if
-    // within the tolerance, else if closer than the chains from stages 2-6.
+    // (one LA segment that misses the tolerance, or its split (splitOneSegment: stage 7
+    // from it, split where it misses): kept if within the tolerance, else where the
+    // chains from stages 2-6 miss it by more; a noisy spiral's chain path went 41
+    // tolerances astray where its one segment missed by a tenth)
     std::optional<PartFit> one, split;
     if (polishing) {
       const auto tp = Clock::now();
@@ -308,10 +307,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     return fit;
   };
   std::vector<PartFit> fits;
-  // An open stroke that one LA segment follows within the tolerance is that segment,
-  // whatever corners the clean-up read in it (fewest extrema, then fewest segments: one
-  // segment comes first; the tight inner turns of a spiral pass for corners). One that
-  // misses it is kept for the end, in case the parts miss it by more (below).
+  // An open stroke that one LA segment, or its split, follows within the tolerance is
+  // that chain, whatever corners the clean-up read in it (fewest extrema, then fewest
+  // segments: one segment comes first; the tight inner turns of a spiral pass for
+  // corners). One that misses it is kept for the end, in case the parts miss it by more
+  // (below).
   std::optional<PartFit> one;
   Part whole;  // (the whole stroke as one part: only where it is tried so)
   if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.outOfTime()) {
