@@ -265,8 +265,7 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     if (!fit.g2.usable() || fit.segments.empty()) return false;
     first_point.push_back(points.empty() ? 0 : points.size() - 1);  // (the corner is both parts')
     if (parts[k].starts_at_corner) co.corners.push_back({chain.size(), first_point.back()});
-    if (fit.spline) chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
-    else chain.push_back(fit.segments.front());  // a line
+    chain.insert(chain.end(), fit.segments.begin(), fit.segments.end());
     points.insert(points.end(), parts[k].points.begin() + (points.empty() ? 0 : 1), parts[k].points.end());
   }
   if (closed) points.pop_back();  // the first corner again
