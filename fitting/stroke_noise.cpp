@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <utility>
+
+#include "core/root_finding.h"
 
 namespace la {
 namespace {
@@ -37,18 +40,22 @@ constexpr double kCornersSetTheNoise = 2.0;
 constexpr double kNoiseSigmas = 4.0;
 constexpr double kAnyPointBeyondFloor = 0.01;
 
-// The k at which the largest of n standard normal deviations exceeds k with probability
-// kAnyPointBeyondFloor (n erfc(k / sqrt 2) = that: bisection, as erfc is monotone), at
-// least kNoiseSigmas.
+// The smallest k (as a double) at which the largest of n standard normal deviations
+// exceeds k with at most probability kAnyPointBeyondFloor: n erfc(k / sqrt 2) <= that,
+// erfc falling; at least kNoiseSigmas. (The root to the last bit, so the floor is the
+// same whatever the root finder's last step.)
 double floorSigmas(std::size_t n) {
   const double per_point = kAnyPointBeyondFloor / static_cast<double>(std::max<std::size_t>(n, 1));
-  double lo = kNoiseSigmas, hi = 40.0;
-  if (std::erfc(lo / std::numbers::sqrt2) <= per_point) return lo;
-  for (int k = 0; k < 60; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (std::erfc(mid / std::numbers::sqrt2) > per_point ? lo : hi) = mid;
-  }
-  return hi;
+  auto keeps = [&](double k) { return std::erfc(k / std::numbers::sqrt2) <= per_point; };
+  if (keeps(kNoiseSigmas)) return kNoiseSigmas;
+  auto beyond = [&](double k) {  // (its derivative: -sqrt(2 / pi) exp(-k^2 / 2))
+    return std::pair{std::erfc(k / std::numbers::sqrt2) - per_point,
+                     -std::sqrt(2.0 / std::numbers::pi) * std::exp(-0.5 * k * k)};
+  };
+  double k = solveMonotone(beyond, kNoiseSigmas, 40.0, kNoiseSigmas, false).x;
+  while (!keeps(k)) k = std::nextafter(k, INFINITY);
+  while (keeps(std::nextafter(k, 0.0))) k = std::nextafter(k, 0.0);
+  return k;
 }
 
 // The smallest tolerance the points allow: their noise level and, for points on an
