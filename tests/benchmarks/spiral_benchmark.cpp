@@ -23,6 +23,7 @@
 #include <random>
 #include <vector>
 
+#include "fitting/parts.h"
 #include "fitting/pipeline.h"
 
 namespace la {
@@ -33,19 +34,6 @@ struct Spiral {
   double turns;
   double truth_deviation = 0.0;  // of the samples from the true spiral
 };
-
-// The distance of p from the truth, from its nearest point's arc length near s (Newton
-// on the foot condition t . (p - P(s)) = 0).
-double distanceFrom(const LaSegment& truth, const Vec2& p, double s) {
-  for (int step = 0; step < 8; ++step) {
-    const Vec2 d = p - truth.position(s);
-    const Vec2 t = truth.tangent(s);
-    const double ds = t.dot(d) / std::max(0.25, 1.0 - truth.kappa(s) * cross(t, d));
-    s = std::clamp(s + ds, 0.0, truth.length());
-    if (std::abs(ds) < 1e-12 * truth.length()) break;
-  }
-  return (p - truth.position(s)).norm();
-}
 
 // The Archimedean spiral r = 5 + b theta, b = 60 / 2 pi, and the distance of p from it,
 // from its nearest point's angle near theta (Newton on (P - p) . P' = 0).
@@ -100,12 +88,14 @@ std::vector<Spiral> spiralsOf(double alpha) {
           std::mt19937 rng(seed);
           std::normal_distribution<double> g(0.0, noise);
           Spiral s{{}, turns};
+          std::vector<Vec2> points;
           for (int i = 0; i <= n; ++i) {
-            const double along = truth.length() * i / n;
-            const Vec2 p = truth.position(along);
-            s.stroke.samples.push_back({noise > 0.0 ? Vec2(p + Vec2(g(rng), g(rng))) : p});
-            s.truth_deviation = std::max(s.truth_deviation, distanceFrom(truth, s.stroke.samples.back().p, along));
+            const Vec2 p = truth.position(truth.length() * i / n);
+            points.push_back(noise > 0.0 ? Vec2(p + Vec2(g(rng), g(rng))) : p);
+            s.stroke.samples.push_back({points.back()});
           }
+          // (measured as the fit's own deviation is)
+          s.truth_deviation = maxDeviationOf({truth}, points, boundingBoxDiagonal(points));
           out.push_back(std::move(s));
         }
   }
