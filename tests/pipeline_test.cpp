@@ -1463,15 +1463,10 @@ TEST(PipelineOneSegment, SpiralsOfUpToFiveTurnsFitWithFewSegments) {
 TEST(PipelineOneSegment, AnArchimedeanSpiralFromATightCentreKeepsTheTolerance) {
   for (const double a : {5.0, 0.0})
     for (double noise : {0.0, 0.01, 0.1, 0.3}) {
-      std::mt19937 rng(3);
-      std::normal_distribution<double> jitter(0.0, noise);
-      std::vector<Vec2> points;
       const double turns = a > 0.0 ? 3.0 : 5.0, b = 60.0 / (2.0 * std::numbers::pi);
-      for (int i = 0; i <= 1000; ++i) {
-        const double theta = 2.0 * std::numbers::pi * turns * i / 1000.0, r = a + b * theta;
-        points.emplace_back(r * std::cos(theta) + (noise > 0.0 ? jitter(rng) : 0.0), r * std::sin(theta) + (noise > 0.0 ? jitter(rng) : 0.0));
-      }
-      const FitResult r = fit(points);
+      // (sampled at equal steps of the angle theta)
+      auto at = [&](double theta) { return Vec2((a + b * theta) * std::cos(theta), (a + b * theta) * std::sin(theta)); };
+      const FitResult r = fit(sampled(at, 2.0 * std::numbers::pi * turns, 1000, noise, 3));
       const std::string what = "r = " + std::to_string(a) + " + b theta, noise " + std::to_string(noise);
       EXPECT_LE(r.quality.max_dev, r.tolerance) << what << "\n" << describeFit(r);
       EXPECT_LE(static_cast<double>(r.curve.pieces.size()), 2.0 * turns) << what << "\n" << describeFit(r);
