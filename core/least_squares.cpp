@@ -49,9 +49,12 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
     ++out.jacobian_evaluations;
     if (!problem.jacobian(x, r, jacobian) || !r.allFinite()) return stop(LeastSquaresEnd::kNoJacobian, "no Jacobian");
     const double cost = costOf(r);
-    const Eigen::MatrixXd jtj = jacobian.transpose() * jacobian;
-    const Eigen::VectorXd gradient = jacobian.transpose() * r;
-    const double scale = std::max(jtj.trace(), options.damping_floor);
+    // (Newton steps, lambda 0 throughout, need no normal equations)
+    const bool newton = lambda == 0.0 && jacobian.rows() == jacobian.cols();
+    Eigen::MatrixXd jtj;
+    Eigen::VectorXd gradient;
+    if (!newton) jtj = jacobian.transpose() * jacobian, gradient = jacobian.transpose() * r;
+    const double scale = newton ? 0.0 : std::max(jtj.trace(), options.damping_floor);
     const Eigen::VectorXd limit = problem.max_step ? problem.max_step(x) : options.max_step;
     // (a larger lambda, where one is allowed: the step got no lower cost)
     auto damper = [&] {
@@ -63,7 +66,7 @@ LeastSquaresSummary solveLeastSquares(const LeastSquaresProblem& problem, Eigen:
     bool accepted = false;
     while (!accepted) {
       Eigen::VectorXd step;
-      if (lambda == 0.0 && jacobian.rows() == jacobian.cols()) {
+      if (newton) {
         step = jacobian.fullPivLu().solve(-r);
       } else {
         Eigen::MatrixXd a = jtj;
