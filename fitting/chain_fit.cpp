@@ -183,12 +183,13 @@ T unitTurning(const T& alpha, const T& y0, const T& y1, ZeroEnd zero) {
 // 1/rule.grading across it. The last rule grades the panels geometrically towards an end
 // where v is small against the other end: there kappa behaves like a power of the
 // distance to a (virtual) zero of v, whose derivatives blow up.
-std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
+// (into `out`, whose storage a model build reuses: a grid per segment and build was two
+// allocations, a few percent of the fit)
+void panelGrid(const Law& law, const GridRule& rule, std::vector<double>& out) {
   const int widths = static_cast<int>(std::ceil(1.0 / rule.width));
+  out.clear();
   const auto uniform = [&] {
-    std::vector<double> grid;
-    for (int k = 0; k <= widths; ++k) grid.push_back(static_cast<double>(k) / widths);
-    return grid;
+    for (int k = 0; k <= widths; ++k) out.push_back(static_cast<double>(k) / widths);
   };
   if (law.zero == ZeroEnd::kBoth) return uniform();  // a line: positions are exact on any panels
   double v0 = 1.0, v1 = 1.0, turning;
@@ -209,7 +210,8 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
   // refuses it like an overflow; the uniform panels only keep the count an int (a NaN
   // cast to int here was undefined behaviour: the fit fuzzer's first finding).
   if (!std::isfinite(turning) || !std::isfinite(e) || !std::isfinite(v1)) return uniform();
-  std::vector<double> grid;
+  thread_local std::vector<double> grid;
+  grid.clear();
   // Equal turning: uniform for the bound, graded as turning ~ u^e from a zero start
   // (clamped as a double: beyond int range the cast would be undefined too).
   const int panels = static_cast<int>(std::clamp(std::ceil(turning / rule.turning), 1.0, static_cast<double>(kMaxPanels)));
@@ -229,13 +231,11 @@ std::vector<double> panelGrid(const Law& law, const GridRule& rule) {
   for (double v = grading * v_max; v > v_min; v *= grading) grid.push_back((v - v0) / (v1 - v0));
   if (std::min(v0, v1) == 0.0) grid.push_back((v_min - v0) / (v1 - v0));
   std::sort(grid.begin(), grid.end());
-  std::vector<double> out;
   for (double u : grid) {
     u = std::clamp(u, 0.0, 1.0);
     if (out.empty() || u > out.back() + 1e-12) out.push_back(u);
   }
   out.back() = 1.0;
-  return out;
 }
 
 // A segment's local curve (start at the origin heading along +x) at its panel ends:
@@ -321,7 +321,7 @@ inline void sinCos(const Jet& t, Jet& s, Jet& c) {
 // The panels of a law, positions by Gauss-Legendre on each panel.
 template <typename T>
 void buildPanels(const Law& law, Panels<T>& p) {
-  p.grid = panelGrid(law, std::is_same_v<T, Jet> ? kJacobianGrid : kFittingGrid);
+  panelGrid(law, std::is_same_v<T, Jet> ? kJacobianGrid : kFittingGrid, p.grid);
   T alpha(law.alpha), y0(law.y0), y1(law.y1), length(law.length);
   if constexpr (std::is_same_v<T, Jet>) {
     alpha.v[kAlpha] = 1.0;
@@ -1296,7 +1296,7 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
     law.y0 = k0 > 0.0 ? std::log(k0) : (k1 > 0.0 ? 0.0 : -700.0);  // a line: kappa = e^-700 = 0
     law.y1 = k1 > 0.0 ? std::log(k1) : (k0 > 0.0 ? 0.0 : -700.0);
     Panels<double> p;
-    p.grid = panelGrid(law, kMeasuringGrid);
+    panelGrid(law, kMeasuringGrid, p.grid);
     for (double u : p.grid) {
       const double at = u * s.length(), theta = s.theta(at) - s.theta0();
       const Vec2 local = rotation(-s.theta0()) * (s.position(at) - s.start());
