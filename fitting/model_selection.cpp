@@ -490,6 +490,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       }
     }
   };
+  // (no part of the chain has more curvature extrema than the cap)
+  auto withinCap = [&](const ChainFitResult& r, const std::vector<ChainCorner>& corners) {
+    if (options.max_extrema < 0) return true;
+    for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(r.segments, corners, closed), boundingBoxDiagonal(points)))
+      if (joints.size() > static_cast<std::size_t>(options.max_extrema)) return false;
+    return true;
+  };
   // Least squares minimizes the sum of squares; a chain of the same segments that keeps
   // every point within the tolerance may still exist where it leaves a few outside.
   // Lawson's iteration looks for it: each round multiplies every point's weight by its
@@ -504,12 +511,12 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       weighted.weights = weights;
       weighted.corners = out.corners;
       const ChainFitResult r = fitChain(out.fit.segments, points, out.fit.feet, weighted);
-      if (!r.improved || !(r.max_distance < out.fit.max_distance)) break;
+      if (!r.improved || !(r.max_distance < out.fit.max_distance) || !withinCap(r, out.corners)) break;
       out.fit = r;
     }
   };
   // The cap on extrema (see the header): merges at the extrema of parts over it, the
-  // closest refit first, then a closed part's circle.
+  // weakest first, then a closed part's circle.
   auto enforceCap = [&] {
     const auto cap = static_cast<std::size_t>(options.max_extrema);
     const double diagonal = boundingBoxDiagonal(points);
@@ -523,16 +530,46 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     // (a simple closed curve that is not a circle has at least 4 extrema: the four-vertex
     // theorem)
     const bool one_closed_part = closed && out.corners.empty();
+    // The merges at `joints` (all but the seam) made one after another on the unfitted
+    // chain, then fitted once: where parts are many extrema over the cap, a fit per merge
+    // cost a capped glyph seconds. True if two or more merged and the fit took them.
+    auto mergedAtOnce = [&](const std::vector<LaSegment>& segs, std::vector<std::size_t> joints) {
+      std::sort(joints.begin(), joints.end(), std::greater<>());  // (a merge renumbers only the segments after it)
+      std::vector<LaSegment> chain = segs;
+      std::vector<ChainFoot> feet = out.fit.feet;
+      std::vector<ChainCorner> corners = out.corners;
+      std::optional<Edit> last;
+      int merges = 0;
+      for (std::size_t j : joints) {
+        std::optional<Edit> e = merge(chain, feet, corners, j, kCapMaxTurning);
+        if (!e) continue;
+        std::optional<std::vector<LaSegment>> rebuilt = rebuild(e->start, e->theta, e->pieces);
+        if (!rebuilt) continue;
+        chain = std::move(*rebuilt);
+        feet = e->feet;
+        corners = cornersOf(e->pieces, corners);
+        last = std::move(e);
+        ++merges;
+      }
+      if (merges < 2) return false;
+      std::optional<Attempt> r = attemptRebuilt(*last, chain, INFINITY);
+      if (!r) return false;
+      take(std::move(*r));
+      out.cap_merges += merges;
+      return true;
+    };
     for (;;) {
       const std::vector<LaSegment> segs = out.fit.segments;
       const std::size_t n = segs.size();
       // The extrema of the parts over the cap, the weakest first: the smaller curvature
       // change beside the joint, relative to the curvature there.
       std::vector<std::pair<double, std::size_t>> candidates;
+      std::vector<std::size_t> excess;  // per part over the cap, its weakest extrema beyond it
       bool over = false;
       for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(segs, out.corners, closed), diagonal)) {
         if (joints.size() <= cap) continue;
         over = true;
+        const std::size_t from = candidates.size();
         for (std::size_t j : joints) {
           const LaSegment& a = segs[(j + n - 1) % n];
           const LaSegment& b = segs[j];
@@ -540,8 +577,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
           const double change = std::min(std::abs(k - a.kappaStart()), std::abs(b.kappaEnd() - k));
           candidates.push_back({change / std::max(std::abs(k), 1.0 / diagonal), j});
         }
+        std::vector<std::pair<double, std::size_t>> part(candidates.begin() + static_cast<std::ptrdiff_t>(from), candidates.end());
+        std::sort(part.begin(), part.end());
+        for (std::size_t k = 0; k + cap < part.size(); ++k)
+          if (part[k].second > 0) excess.push_back(part[k].second);
       }
       if (!over) return;
+      if (!one_closed_part && excess.size() >= 2 && mergedAtOnce(segs, excess)) continue;
       if (one_closed_part && (cap < 4 || n == 1)) {
         if (!circle()) out.over_cap = true;
         return;
@@ -578,6 +620,11 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     }
   };
   simplify(true);
+  // Under a cap on extrema, the chain keeps it from here on: merged down to it first, then
+  // split towards the tolerance only where a split's refit keeps it (a split is a cut
+  // that changes nothing, but the refit may add an extremum). The splits the cap would
+  // merge away again cost a capped glyph most of its second.
+  if (options.max_extrema >= 0) enforceCap();
   // The split at the worst point of a fit (an edit).
   auto splitAtWorst = [&](const ChainFitResult& from) {
     const std::size_t worst = std::max_element(from.distance.begin(), from.distance.end()) - from.distance.begin();
@@ -587,14 +634,18 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const double u = std::clamp(at.u, margin, 1.0 - margin);
     ++edits;
     if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u));
-    // (a line bends towards the worst point: the arc through its ends with that sagitta)
+    // (a line bends towards the worst point: the arc through its ends with that sagitta,
+    // no tighter than the fit allows: a stub line bent so had a curvature of 1e16, and
+    // the quadrature of its 1e9 radians took seconds)
     const double side = cross(s.tangent(at.u * s.length()), points[worst] - s.position(at.u * s.length()));
-    const double bend = 8.0 * side / (s.length() * s.length());
+    double bend = 8.0 * side / (s.length() * s.length());
+    if (options.fit.max_curvature > 0.0) bend = std::clamp(bend, -options.fit.max_curvature, options.fit.max_curvature);
     return attempt(bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed));
   };
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
   auto helps = [&](const std::optional<Attempt>& r) {
-    return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance);
+    return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance) &&
+           withinCap(r->fit, r->corners);
   };
   // Splits while some point is out of tolerance (and the split helps).
   while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty() &&

@@ -38,9 +38,11 @@
 //
 // The cap on curvature extrema (SelectionOptions::max_extrema) is a hard limit, counted
 // per smooth part (between corners) as the quality figures count them
-// (QualityFigures::extrema_per_part). While a part has more, the two segments
-// meeting at one of its extrema are merged (the merge whose refit stays closest to the
-// points), whatever the deviation costs; a closed part without corners that still has
+// (QualityFigures::extrema_per_part). It is met before the splits, and a split (or a
+// Lawson round) is kept only where its refit keeps it. While a part has more, the
+// segments meeting at its weakest extrema (the smallest curvature change beside the
+// joint) are merged, whatever the deviation costs: all those beyond the cap at once,
+// fitted once, then one at a time; a closed part without corners that still has
 // too many, or whose cap is under 4 (a simple closed curve other than a circle has at
 // least 4: the four-vertex theorem), becomes the circle closest to its points.
 

@@ -348,4 +348,36 @@ TEST(SelectChain, ARefusedStartIsReturnedUnedited) {
   EXPECT_EQ(r.collapses + r.merges + r.straightenings + r.splits, 0);
 }
 
+// Curvature extrema of a corner-free open chain, counted here from its segments' end
+// curvatures (an LA segment's curvature is monotone): the joints where |kappa| turns
+// from rising to falling or back.
+int extremaOf(const std::vector<LaSegment>& chain) {
+  int count = 0;
+  for (std::size_t j = 1; j < chain.size(); ++j) {
+    const double before = std::abs(chain[j - 1].kappaEnd()) - std::abs(chain[j - 1].kappaStart());
+    const double after = std::abs(chain[j].kappaEnd()) - std::abs(chain[j].kappaStart());
+    if (before * after < 0.0) ++count;
+  }
+  return count;
+}
+
+// Under a cap on extrema the splits keep it. The split case's truth has a maximum and a
+// minimum, and without a cap the split adds the segment that makes the minimum; capped
+// at one extremum, no split may add it. Its start has one: the capped chain is then no
+// further from the points than the start's own fit (when the split's chain was merged
+// back down to the cap instead, it ended 48 units off, the start's fit 1.6).
+TEST(SelectChain, UnderACapTheSplitsKeepIt) {
+  const SplitCase c(3);
+  const SelectionResult free = selectChain(c.start, c.points, {}, selection());
+  ASSERT_EQ(extremaOf(free.fit.segments), 2) << "without the cap, the split adds the minimum: this test shows nothing";
+  SelectionOptions options = selection();
+  options.max_extrema = 1;
+  const ChainFitResult start = withoutEdits(c.start, c.points, options);
+  ASSERT_EQ(extremaOf(start.segments), 1);
+  const SelectionResult r = selectChain(c.start, c.points, {}, options);
+  EXPECT_LE(extremaOf(r.fit.segments), 1);
+  EXPECT_FALSE(r.over_cap);
+  EXPECT_LE(maxDistance(r.fit.segments, c.points), 1.01 * maxDistance(start.segments, c.points));
+}
+
 }  // namespace la
