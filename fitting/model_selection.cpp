@@ -491,9 +491,10 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     }
   };
   // (no part of the chain has more curvature extrema than the cap)
+  const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
   auto withinCap = [&](const ChainFitResult& r, const std::vector<ChainCorner>& corners) {
     if (options.max_extrema < 0) return true;
-    for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(r.segments, corners, closed), boundingBoxDiagonal(points)))
+    for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(r.segments, corners, closed), diagonal))
       if (joints.size() > static_cast<std::size_t>(options.max_extrema)) return false;
     return true;
   };
@@ -519,7 +520,6 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // weakest first, then a closed part's circle.
   auto enforceCap = [&] {
     const auto cap = static_cast<std::size_t>(options.max_extrema);
-    const double diagonal = boundingBoxDiagonal(points);
     auto circle = [&] {
       const auto c = closestCircle(points);
       if (!c) return false;

@@ -80,8 +80,10 @@ struct SelectionOptions {
   /// hooks beside corners and stubs are collapsed and nearly straight runs straightened
   /// (for segments chosen already).
   bool refine = true;
-  /// Curvature extrema allowed per smooth part (-1: no cap).
+  /// Curvature extrema allowed per smooth part (-1: no cap), counted and weighed as the
+  /// quality figures count them, against this diagonal (the whole stroke's; 0: the points').
   int max_extrema = -1;
+  double diagonal = 0.0;
   /// No edit starts after this (the cap's merges excepted): the chain as it is then is
   /// the result.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

@@ -95,6 +95,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
   co.max_iterations = kFitIterations;
   co.noise = context.noise.sigma;
   so.max_extrema = options.segmentation.max_extrema;
+  so.diagonal = context.diagonal;
   so.deadline = co.deadline = context.deadline;
   // (DESIGN.md section 6: a bend tighter than the tolerance is a corner; a hair inside,
   // so that rounding leaves no radius under it)
