@@ -56,32 +56,6 @@ Curve curveOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner
   return c;
 }
 
-// The circle closest to the points (least squares on x^2 + y^2 + D x + E y + F = 0),
-// as one closed arc starting at the foot of the first point; nullopt if the points are
-// on a line.
-std::optional<LaSegment> closestCircle(const std::vector<Vec2>& points) {
-  Eigen::MatrixXd a(points.size(), 3);
-  Eigen::VectorXd b(points.size());
-  const Vec2 origin = points.front();
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    const Vec2 p = points[k] - origin;
-    a.row(static_cast<Eigen::Index>(k)) << p.x(), p.y(), 1.0;
-    b[static_cast<Eigen::Index>(k)] = -p.squaredNorm();
-  }
-  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(b);
-  const Vec2 centre = origin - 0.5 * Vec2(s[0], s[1]);
-  const double r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
-  if (!std::isfinite(r2) || !(r2 > 0.0)) return std::nullopt;
-  const double r = std::sqrt(r2);
-  // (turning the way the points go round)
-  double area = 0.0;
-  for (std::size_t k = 0; k < points.size(); ++k) area += cross(points[k] - centre, points[(k + 1) % points.size()] - centre);
-  const double sign = area < 0.0 ? -1.0 : 1.0;
-  const Vec2 radial = (points.front() - centre).normalized();
-  const Vec2 start = centre + r * radial;
-  return LaSegment::arc(2.0 * std::numbers::pi * r, start, angleOf(Vec2(-radial.y(), radial.x()) * sign), sign / r);
-}
-
 std::vector<Piece> piecesOf(const std::vector<LaSegment>& chain, const std::vector<ChainCorner>& corners) {
   std::vector<Piece> out;
   for (const LaSegment& s : chain) {
@@ -310,6 +284,29 @@ std::optional<Edit> collapse(const std::vector<LaSegment>& chain, const std::vec
 }
 
 }  // namespace
+
+std::optional<LaSegment> closestCircle(const std::vector<Vec2>& points) {
+  Eigen::MatrixXd a(points.size(), 3);
+  Eigen::VectorXd b(points.size());
+  const Vec2 origin = points.front();
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Vec2 p = points[k] - origin;
+    a.row(static_cast<Eigen::Index>(k)) << p.x(), p.y(), 1.0;
+    b[static_cast<Eigen::Index>(k)] = -p.squaredNorm();
+  }
+  const Eigen::Vector3d s = a.colPivHouseholderQr().solve(b);
+  const Vec2 centre = origin - 0.5 * Vec2(s[0], s[1]);
+  const double r2 = 0.25 * (s[0] * s[0] + s[1] * s[1]) - s[2];
+  if (!std::isfinite(r2) || !(r2 > 0.0)) return std::nullopt;
+  const double r = std::sqrt(r2);
+  // (turning the way the points go round)
+  double area = 0.0;
+  for (std::size_t k = 0; k < points.size(); ++k) area += cross(points[k] - centre, points[(k + 1) % points.size()] - centre);
+  const double sign = area < 0.0 ? -1.0 : 1.0;
+  const Vec2 radial = (points.front() - centre).normalized();
+  const Vec2 start = centre + r * radial;
+  return LaSegment::arc(2.0 * std::numbers::pi * r, start, angleOf(Vec2(-radial.y(), radial.x()) * sign), sign / r);
+}
 
 SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
                             const std::vector<ChainFoot>& feet, const SelectionOptions& options) {

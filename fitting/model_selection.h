@@ -47,6 +47,7 @@
 // least 4: the four-vertex theorem), becomes the circle closest to its points.
 
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <vector>
 
@@ -98,6 +99,12 @@ struct SelectionResult {
   bool over_cap = false;  // some part still has more extrema than the cap
   bool out_of_time = false;  // the deadline stopped the edits
 };
+
+/// The circle closest to the points (least squares on x^2 + y^2 + D x + E y + F = 0), as
+/// one closed arc starting at the foot of the first point, turning the way the points go
+/// round; nullopt if the points are on a line. (A closed part's curve under a cap on
+/// extrema below 4.)
+std::optional<LaSegment> closestCircle(const std::vector<Vec2>& points);
 
 /// Fits `chain` to `points` (fitChain with options.fit; `feet` as there) and edits it as
 /// above. The result is the last accepted chain's fit (the plain fit if no edit helped).

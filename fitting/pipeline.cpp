@@ -289,7 +289,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // points need a bend tighter than it that the clean-up took for no corner): fitted
   // again without the bound, kept if closer. (Part by part: the other parts keep it, and
   // the merges and the fit across corners below see a part that keeps the tolerance.)
-  auto fitOne = [&](const Part& part, bool other_starts) {
+  auto fitOneBounded = [&](const Part& part, bool other_starts) {
     const std::size_t room = polish_room;
     PartFit fit = fitOneWith(part, other_starts, context);
     if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit) return fit;
@@ -304,6 +304,12 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     PartFit other = fitOneWith(part, other_starts, unbounded);
     if (other.g2.usable() && worst(other) < worst(fit)) return other;
     polish_room = bounded_room;
+    return fit;
+  };
+  // (the cap on extrema wins, whichever start or stage the part's chain came from)
+  auto fitOne = [&](const Part& part, bool other_starts) {
+    PartFit fit = fitOneBounded(part, other_starts);
+    if (options.g2 != G2Method::kOff) keepTheCap(fit, part, context);
     return fit;
   };
   std::vector<PartFit> fits;

@@ -111,6 +111,49 @@ bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitConte
   return false;
 }
 
+void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
+  if (part.points.size() < 3 || !overCap(fit.segments, part.closed, context)) return;
+  auto replaceBy = [&](std::vector<LaSegment> segments, const char* what, int iterations) {
+    fit.segments = std::move(segments);
+    fit.max_dev = maxDeviationOf(fit.segments, part.points, context.diagonal);
+    fit.stray = NAN;
+    fit.warnings.clear();
+    fit.g2 = {SolveStatus::kConverged, iterations, 0.0, what};
+    PieceReport report = fit.reports.empty() ? PieceReport{} : fit.reports.front();
+    report.alpha = fit.segments.front().alpha();
+    report.kind = PieceKind::kThreePoint;
+    fit.reports = {report};
+  };
+  if (part.closed) {
+    // (a simple closed curve other than a circle has at least 4 extrema)
+    if (context.options.segmentation.max_extrema >= 4) return;
+    if (const std::optional<LaSegment> circle = closestCircle(part.points))
+      replaceBy({*circle}, "the closest circle (stage 7: the cap on extrema)", 0);
+    return;
+  }
+  const Vec2 a = part.points.front(), m = part.points[part.points.size() / 2], b = part.points.back();
+  const double chord = (b - a).norm();
+  if (!(chord > 0.0)) return;
+  // (the circle through the three points: signed curvature 2 sin(angle at m) / chord; the
+  // arc from a to b, turning kappa L, starts turned back by half of it)
+  double kappa = 2.0 * cross(m - a, b - m) / ((m - a).norm() * (b - m).norm() * chord);
+  if (!std::isfinite(kappa)) kappa = 0.0;
+  const double half = std::asin(std::min(1.0, 0.5 * std::abs(kappa) * chord));
+  const double length = kappa == 0.0 ? chord : 2.0 * half / std::abs(kappa);
+  const LaSegment arc = LaSegment::arc(length, a, angleOf(b - a) - 0.5 * kappa * length, kappa);
+  ChainFitOptions co = stage7Selection(context).fit;
+  co.fix_start = part.starts_at_corner;
+  co.fix_end = part.ends_at_corner;
+  const ChainFitResult r = fitChain({arc}, part.points, {}, co);
+  std::vector<LaSegment> segments = {arc};
+  if (r.report.status != SolveStatus::kBadInput && r.improved) {
+    segments = r.segments;
+    if (co.fix_end) segments = snapToJoints(segments, false, b, context.g2(), kSnapReach * context.tolerance);
+    if (segments.empty()) segments = {arc};
+  }
+  replaceBy(segments, "one LA segment (stage 7: the cap on extrema)", r.report.iterations);
+}
+
 // (fits its chain to the points and selects its segments, fitting/model_selection.h)
 void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments,
                 SplineStart spline_start) {

@@ -46,6 +46,15 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);
 
+/// The cap on extrema wins: a part's chain still over it (a part whose capped chain could
+/// not be snapped onto its corner keeps the chain of stages 2-6) becomes one LA segment
+/// fitted to its points between its ends (an LA segment has no curvature extremum), from
+/// the arc through its ends and its middle point, or where that fit fails, that arc; a
+/// closed part under a cap below 4, the circle closest to its points. A part from a
+/// corner back to it is left: no LA segment closes without an inflection (its osculating
+/// circles are nested, Tait-Kneser).
+void keepTheCap(PartFit& fit, const Part& part, const FitContext& context);
+
 /// Stage 7 across corners: all parts' chains fitted as one chain whose corners are
 /// free. True if it changed the chains; false where a part has no G2 chain or the fit
 /// brought nothing.
