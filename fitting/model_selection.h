@@ -47,8 +47,8 @@
 // least 4: the four-vertex theorem), becomes the circle closest to its points.
 
 #include <chrono>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "fitting/chain_fit.h"
