@@ -490,10 +490,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (no part of the chain has more curvature extrema than the cap)
   const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
   auto withinCap = [&](const ChainFitResult& r, const std::vector<ChainCorner>& corners) {
-    if (options.max_extrema < 0) return true;
-    for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(r.segments, corners, closed), diagonal))
-      if (joints.size() > static_cast<std::size_t>(options.max_extrema)) return false;
-    return true;
+    return options.max_extrema < 0 || !overExtremaCap(curveOf(r.segments, corners, closed), diagonal, options.max_extrema);
   };
   // Least squares minimizes the sum of squares; a chain of the same segments that keeps
   // every point within the tolerance may still exist where it leaves a few outside.

@@ -331,6 +331,13 @@ std::vector<std::vector<std::size_t>> extremumJoints(const Curve& curve, double 
   return parts;
 }
 
+bool overExtremaCap(const Curve& curve, double diagonal, int cap) {
+  if (cap < 0) return false;
+  for (const std::vector<std::size_t>& joints : extremumJoints(curve, diagonal))
+    if (joints.size() > static_cast<std::size_t>(cap)) return true;
+  return false;
+}
+
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points) {
   QualityFigures q;
   q.diagonal = boundingBoxDiagonal(points);

@@ -61,4 +61,8 @@ int curvatureTrend(const LaSegment& segment, double diagonal);
 /// reverses (segment index of the joint; 0 for a closed curve's seam).
 std::vector<std::vector<std::size_t>> extremumJoints(const Curve& curve, double diagonal);
 
+/// Some smooth part of the curve has more curvature extrema than `cap` (extremumJoints;
+/// a negative cap: none).
+bool overExtremaCap(const Curve& curve, double diagonal, int cap);
+
 }  // namespace la

@@ -105,10 +105,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
 
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context) {
   const int cap = context.options.segmentation.max_extrema;
-  if (cap < 0) return false;
-  for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(segments, closed), context.diagonal))
-    if (static_cast<int>(joints.size()) > cap) return true;
-  return false;
+  return cap >= 0 && overExtremaCap(curveOf(segments, closed), context.diagonal, cap);
 }
 
 void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
