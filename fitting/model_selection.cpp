@@ -527,9 +527,9 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     // The merges at `joints` (all but the seam) made one after another on the unfitted
     // chain, then fitted once: where parts are many extrema over the cap, a fit per merge
     // cost a capped glyph seconds. True if two or more merged and the fit took them.
-    auto mergedAtOnce = [&](const std::vector<LaSegment>& segs, std::vector<std::size_t> joints) {
+    auto mergedAtOnce = [&](std::vector<std::size_t> joints) {
       std::sort(joints.begin(), joints.end(), std::greater<>());  // (a merge renumbers only the segments after it)
-      std::vector<LaSegment> chain = segs;
+      std::vector<LaSegment> chain = out.fit.segments;
       std::vector<ChainFoot> feet = out.fit.feet;
       std::vector<ChainCorner> corners = out.corners;
       std::optional<Edit> last;
@@ -577,7 +577,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
           if (part[k].second > 0) excess.push_back(part[k].second);
       }
       if (!over) return;
-      if (!one_closed_part && excess.size() >= 2 && mergedAtOnce(segs, excess)) continue;
+      if (!one_closed_part && excess.size() >= 2 && mergedAtOnce(excess)) continue;
       if (one_closed_part && (cap < 4 || n == 1)) {
         if (!circle()) out.over_cap = true;
         return;
