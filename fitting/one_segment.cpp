@@ -255,29 +255,6 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
 // less, cut so, came out with fewer segments than the extrema it was drawn with.)
 constexpr double kSplitMarginTolerances = 4.0;
 
-// A part's fit from stage 7's chain alone (no spline: stages 2-6 did not run), its
-// points' feet on it kept.
-PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
-  PartFit fit;
-  fit.segments = chain.segments;
-  for (std::size_t i = 0; i < fit.segments.size(); ++i) {
-    const LaSegment& s = fit.segments[i];
-    PieceReport report;
-    report.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
-                  : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
-                                        : PieceKind::kThreePoint;
-    report.alpha = s.alpha();
-    report.lcg_alpha = report.lcg_r2 = NAN;
-    if (i < chain.alpha_standard_error.size()) report.alpha_standard_error = chain.alpha_standard_error[i];
-    fit.reports.push_back(report);
-  }
-  fit.max_dev = chain.max_distance;
-  fit.feet = chain.feet;
-  fit.smoothing = {SolveStatus::kConverged, 0, 0.0, "not needed: " + what};
-  fit.g2 = {SolveStatus::kConverged, chain.report.iterations, 0.0, what + " (stage 7)"};
-  return fit;
-}
-
 }  // namespace
 
 std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& context) {

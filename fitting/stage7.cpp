@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include "fitting/model_selection.h"
 #include "fitting/paper_stages.h"
@@ -108,24 +109,43 @@ bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitConte
   return cap >= 0 && overExtremaCap(curveOf(segments, closed), context.diagonal, cap);
 }
 
+PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
+  PartFit fit;
+  fit.segments = chain.segments;
+  for (std::size_t i = 0; i < fit.segments.size(); ++i) {
+    const LaSegment& s = fit.segments[i];
+    PieceReport report;
+    report.kind = s.kappaStart() == 0.0 ? PieceKind::kInflectionStart
+                  : s.kappaEnd() == 0.0 ? PieceKind::kInflectionEnd
+                                        : PieceKind::kThreePoint;
+    report.alpha = s.alpha();
+    report.lcg_alpha = report.lcg_r2 = NAN;
+    if (i < chain.alpha_standard_error.size()) report.alpha_standard_error = chain.alpha_standard_error[i];
+    fit.reports.push_back(report);
+  }
+  fit.max_dev = chain.max_distance;
+  fit.feet = chain.feet;
+  fit.smoothing = {SolveStatus::kConverged, 0, 0.0, "not needed: " + what};
+  fit.g2 = {SolveStatus::kConverged, chain.report.iterations, 0.0, what + " (stage 7)"};
+  return fit;
+}
+
 void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
   if (part.points.size() < 3 || !overCap(fit.segments, part.closed, context)) return;
-  auto replaceBy = [&](std::vector<LaSegment> segments, const char* what, int iterations) {
-    fit.segments = std::move(segments);
+  auto replaceBy = [&](const ChainFitResult& chain, const std::string& what) {
+    fit = partFitOf(chain, what);
     fit.max_dev = maxDeviationOf(fit.segments, part.points, context.diagonal);
-    fit.stray = NAN;
-    fit.warnings.clear();
-    fit.g2 = {SolveStatus::kConverged, iterations, 0.0, what};
-    PieceReport report = fit.reports.empty() ? PieceReport{} : fit.reports.front();
-    report.alpha = fit.segments.front().alpha();
-    report.kind = PieceKind::kThreePoint;
-    fit.reports = {report};
+  };
+  auto alone = [](const LaSegment& segment) {  // (a segment no fit made)
+    ChainFitResult chain;
+    chain.segments = {segment};
+    return chain;
   };
   if (part.closed) {
     // (a simple closed curve other than a circle has at least 4 extrema)
     if (context.options.segmentation.max_extrema >= 4) return;
     if (const std::optional<LaSegment> circle = closestCircle(part.points))
-      replaceBy({*circle}, "the closest circle (stage 7: the cap on extrema)", 0);
+      replaceBy(alone(*circle), "the closest circle, for the cap on extrema");
     return;
   }
   const Vec2 a = part.points.front(), m = part.points[part.points.size() / 2], b = part.points.back();
@@ -141,14 +161,11 @@ void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
   ChainFitOptions co = stage7Selection(context).fit;
   co.fix_start = part.starts_at_corner;
   co.fix_end = part.ends_at_corner;
-  const ChainFitResult r = fitChain({arc}, part.points, {}, co);
-  std::vector<LaSegment> segments = {arc};
-  if (r.report.status != SolveStatus::kBadInput && r.improved) {
-    segments = r.segments;
-    if (co.fix_end) segments = snapToJoints(segments, false, b, context.g2(), kSnapReach * context.tolerance);
-    if (segments.empty()) segments = {arc};
-  }
-  replaceBy(segments, "one LA segment (stage 7: the cap on extrema)", r.report.iterations);
+  ChainFitResult r = fitChain({arc}, part.points, {}, co);
+  if (r.report.status != SolveStatus::kBadInput && r.improved && co.fix_end)
+    r.segments = snapToJoints(r.segments, false, b, context.g2(), kSnapReach * context.tolerance);
+  if (r.report.status == SolveStatus::kBadInput || !r.improved || r.segments.empty()) r = alone(arc);
+  replaceBy(r, "one LA segment, for the cap on extrema");
 }
 
 // (fits its chain to the points and selects its segments, fitting/model_selection.h)

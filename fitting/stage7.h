@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "fitting/fit_context.h"
@@ -45,6 +46,11 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 
 
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);
+
+/// A part's fit from a chain of stage 7's alone (no spline: stages 2-6 did not run or do
+/// not stand behind it), its points' feet on it kept, its reports from its segments;
+/// `what` says how it was made.
+PartFit partFitOf(const ChainFitResult& chain, const std::string& what);
 
 /// The cap on extrema wins: a part's chain still over it (a part whose capped chain could
 /// not be snapped onto its corner keeps the chain of stages 2-6) becomes one LA segment
