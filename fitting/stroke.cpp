@@ -347,9 +347,13 @@ class Polyline {
 
 /// Whether the legs of a window (from its ends to its centre i) are straight: the points
 /// between bulge from the chord by at most kLegStraightness of its length on average
-/// (signed, so that noise averages out and an arc's bulge does not).
-bool straightLegs(const Polyline& line, std::ptrdiff_t i, const Polyline::Turn& turn) {
+/// (signed, so that noise averages out and an arc's bulge does not). A leg whose first
+/// step from i is a window (w) long is that step, straight: a font outline's straight
+/// edge is one step, and the window's two samples a side reach past its far corner.
+bool straightLegs(const Polyline& line, std::ptrdiff_t i, const Polyline::Turn& turn, double w) {
   auto straight = [&](std::ptrdiff_t from, std::ptrdiff_t to) {
+    const std::ptrdiff_t next = from == i ? i + 1 : i - 1;
+    if ((line.at(next) - line.at(i)).norm() >= w) return true;
     const Vec2 chord = line.at(to) - line.at(from);
     const double length = chord.norm();
     const double bulge =
@@ -385,7 +389,7 @@ std::vector<std::size_t> findCorners(const std::vector<Vec2>& p, bool closed, do
     // see the other in their wide turn: there the half-window test decides, if both
     // legs are straight (a small loop inside the window has no straight legs).
     const bool keeps_half = half && half->angle >= kSharpRatio * full->angle;
-    const bool sharp = wide ? *wide <= kWideRatio * full->angle || (keeps_half && straightLegs(line, i, *full))
+    const bool sharp = wide ? *wide <= kWideRatio * full->angle || (keeps_half && straightLegs(line, i, *full, w))
                             : keeps_half;
     if (!sharp) continue;
     candidates.push_back({i, *full});

@@ -632,6 +632,30 @@ std::vector<std::filesystem::path> dollarFiles(const std::string& gesture) {
   return files;
 }
 
+TEST(CleanStroke, AStraightEdgeOfOneStepHasACornerAtEachEnd) {
+  // A font outline's counter (DejaVu Sans 'e', the hole above the crossbar): an arc,
+  // densely sampled, closed by a straight edge that is one step, far longer than a corner
+  // window. The window's two samples a side reach past the edge's far corner, so each
+  // corner saw the other in its legs; the edge itself is the straight leg.
+  std::vector<Vec2> arc;
+  for (int k = 0; k <= 120; ++k) arc.push_back(100.0 * unitVector(kPi * k / 120.0));  // (100, 0) to (-100, 0)
+  for (std::size_t rotate : {std::size_t{0}, std::size_t{50}}) {
+    SCOPED_TRACE("first sample " + std::to_string(rotate));
+    std::vector<Vec2> points(arc.begin() + static_cast<std::ptrdiff_t>(rotate), arc.end());
+    points.insert(points.end(), arc.begin(), arc.begin() + static_cast<std::ptrdiff_t>(rotate));
+    CleanupOptions as_contour;
+    as_contour.assume_closed = true;
+    const CleanStroke c = cleanStroke(strokeOf(points), as_contour);
+    ASSERT_TRUE(c.closed);
+    std::vector<Vec2> at;
+    for (std::size_t k : c.corners) at.push_back(c.points[k]);
+    ASSERT_EQ(at.size(), 2u) << describe(c);
+    for (const Vec2& q : {Vec2(100.0, 0.0), Vec2(-100.0, 0.0)})
+      EXPECT_TRUE(std::any_of(at.begin(), at.end(), [&](const Vec2& p) { return (p - q).norm() < 1e-9; }))
+          << "no corner at (" << q.x() << ", " << q.y() << "): " << describe(c);
+  }
+}
+
 TEST(CleanStrokeRealData, DollarRectanglesHaveTheirCorners) {
   // 6 rectangles, each started at the top-left corner and ended 7.6-16% of the diagonal
   // short of it: open (close_fraction is 6%), so that corner is split between the two
