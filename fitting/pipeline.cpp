@@ -31,6 +31,10 @@ constexpr double kTighterThanTolerance = 1.0 + 1e-6;
 constexpr int kTightBendRounds = 2;
 // A corner put at a tight bend goes to the point turning most this many points about it.
 constexpr std::size_t kCornerReach = 2;
+// A curve with its tight bends made corners is kept where it misses the tolerance by at
+// most this factor (a bend tighter than the tolerance is DESIGN.md section 6's defect; a
+// miss this small, the warning tells).
+constexpr double kCorneredMiss = 1.01;
 // Where a part's one LA segment misses the tolerance, the chains from stages 2-6 get this
 // many times the time it took (fitOneWith); once, where it (or split) misses by at most
 // a tenth.
@@ -129,23 +133,29 @@ std::vector<Vec2> tightBends(const FitResult& r) {
 }
 
 // The point of `stroke` where it turns most (by the angle between its steps in and out)
-// among the point nearest `q` and kCornerReach points either side of it.
+// among the point nearest `q` and kCornerReach points either side of it. Where that one
+// is beside a corner (too near to be one, canBeCorner), the point turning most of those
+// that can be: a star's tip with a pen-up hook turns most at the hook's far point, beside
+// the tip's corner, and its side curled into the tip there. (Where it is a corner, the
+// bend is that corner's.)
 std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
   const std::vector<Vec2>& p = stroke.points;
   const std::size_t n = p.size();
   const auto nearest = static_cast<std::size_t>(std::min_element(p.begin(), p.end(), [&](const Vec2& a, const Vec2& b) {
                                                   return (a - q).squaredNorm() < (b - q).squaredNorm();
                                                 }) - p.begin());
-  std::size_t best = nearest;
-  double most = -1.0;
+  std::size_t best = nearest, best_free = nearest;
+  double most = -1.0, most_free = -1.0;
   for (std::size_t k = nearest + n - kCornerReach; k <= nearest + n + kCornerReach; ++k) {
     const std::size_t i = k % n;
     if (!stroke.closed && (k < n + 1 || k + 2 > 2 * n)) continue;  // (an open stroke's ends turn nowhere)
     const Vec2 in = p[i] - p[(i + n - 1) % n], out = p[(i + 1) % n] - p[i];
     const double turn = std::abs(std::atan2(cross(in, out), in.dot(out)));
     if (turn > most) most = turn, best = i;
+    if (turn > most_free && canBeCorner(stroke, i)) most_free = turn, best_free = i;
   }
-  return best;
+  const bool is_corner = std::find(stroke.corners.begin(), stroke.corners.end(), best) != stroke.corners.end();
+  return is_corner || canBeCorner(stroke, best) || most_free < 0.0 ? best : best_free;
 }
 
 // The whole pipeline, stage 7 bending no tighter than the tolerance where
@@ -476,7 +486,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
   // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
   // again with the bound, in about the time the fit took so far: kept where it bends less
-  // tightly and keeps the tolerance (or misses it by no more).
+  // tightly and keeps the tolerance (or misses it by no more, or by kCorneredMiss).
   std::vector<Vec2> corners_at;
   for (int round = 0; round < kTightBendRounds && polishing && !r.cleaned.straight && !r.out_of_time &&
                       !r.over_polish_limit && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance;
@@ -490,7 +500,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     bounded_time.time_budget_ms = options.time_budget_ms > 0.0 ? std::min(options.time_budget_ms, 2.0 * spent) : 2.0 * spent;
     FitResult cornered = fitOnce(stroke, bounded_time, hook_tolerance, true, start, corners_at);
     if (cornered.out_of_time || !cornered.g2.usable() ||
-        cornered.quality.max_dev > std::max(cornered.tolerance, r.quality.max_dev) ||
+        cornered.quality.max_dev > std::max(kCorneredMiss * cornered.tolerance, r.quality.max_dev) ||
         !(cornered.quality.max_abs_kappa < r.quality.max_abs_kappa))
       break;
     r = std::move(cornered);

@@ -789,14 +789,18 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double
   return result;
 }
 
-bool addCorner(CleanStroke& stroke, std::size_t index) {
+bool canBeCorner(const CleanStroke& stroke, std::size_t index) {
   const std::size_t n = stroke.points.size();
   constexpr std::size_t kApart = 2;  // (a part between two corners has 3 points or more)
   if (index >= n || (!stroke.closed && (index < kApart || index + kApart >= n))) return false;
-  for (std::size_t c : stroke.corners) {
+  return std::none_of(stroke.corners.begin(), stroke.corners.end(), [&](std::size_t c) {
     const std::size_t apart = c > index ? c - index : index - c;
-    if (std::min(apart, stroke.closed ? n - apart : apart) < kApart) return false;
-  }
+    return std::min(apart, stroke.closed ? n - apart : apart) < kApart;
+  });
+}
+
+bool addCorner(CleanStroke& stroke, std::size_t index) {
+  if (!canBeCorner(stroke, index)) return false;
   stroke.corners.insert(std::upper_bound(stroke.corners.begin(), stroke.corners.end(), index), index);
   if (stroke.closed) startClosedAt(stroke, stroke.corners.front());
   return true;

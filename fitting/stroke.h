@@ -139,9 +139,13 @@ struct CleanStroke {
 /// points' bounding-box diagonal, FitOptions' default.
 CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options = {}, double tolerance = 0.0);
 
-/// Makes points[index] a corner, where it is two points or more from every corner and
-/// (open stroke) from either end, and says whether it did. A closed stroke's points (and
-/// sources) are rotated so that its first corner stays at index 0.
+/// Whether points[index] can be a corner: two points or more from every corner and
+/// (open stroke) from either end.
+bool canBeCorner(const CleanStroke& stroke, std::size_t index);
+
+/// Makes points[index] a corner where it can be one (canBeCorner), and says whether it
+/// did. A closed stroke's points (and sources) are rotated so that its first corner stays
+/// at index 0.
 bool addCorner(CleanStroke& stroke, std::size_t index);
 
 }  // namespace la

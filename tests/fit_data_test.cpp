@@ -133,6 +133,10 @@ Expectation expectationFor(const std::string& dataset, const fs::path& file) {
   // long first step is a segment of the stroke, not an outlier); no chain of stage 7
   // gets the straight side and the jump's corner within 1.053 (the noise floor): 1.056.
   if (dataset == "mmg" && stem == "10-stylus-medium-six_point_star-01") e.known_miss = 0.005;
+  // Its medium star's first tip has a pen-up hook; the corner before it, which keeps the
+  // bound on the radius, costs 0.36% of the tolerance (FitDataRegression.
+  // AHookAtAStarsTipIsACornerNotATightBend).
+  if (dataset == "dollar1" && file.generic_string().ends_with("s01_pilot/csv/medium/star.csv")) e.known_miss = 0.005;
   return e;
 }
 
@@ -316,6 +320,24 @@ TEST(FitDataRegression, AClosedContourKeepsItsCornersWithinTolerance) {
   bool at_the_bases_top_right = false;
   for (std::size_t c : r.cleaned.corners) at_the_bases_top_right |= (r.cleaned.points[c] - Vec2(1098, 170)).norm() < 1.0;
   EXPECT_TRUE(at_the_bases_top_right);
+  EXPECT_LT(r.quality.g1_gap, kG1Threshold);
+  EXPECT_LT(r.quality.g2_gap, kG2Threshold);
+}
+
+// The $1 star (medium, pilot) ends at its first tip with a pen-up hook, (77, 249) to
+// (75, 254) to the tip (72, 252). Its last side curled into the tip's corner with a
+// radius of 0.38 tolerances (the fit without the bound, as the bound cost the
+// tolerance), and the corner meant for that bend went to the hook's far point, which
+// turns most but is beside the tip's corner, where none can go: none was tried. With the
+// corner at the point before the hook, the sides keep the bound on the radius, within 1%
+// of the tolerance (and warned).
+TEST(FitDataRegression, AHookAtAStarsTipIsACornerNotATightBend) {
+  const std::vector<Stroke> all = readStrokes(kData / "strokes/dollar1_unistroke_s01_pilot/csv/medium/star.csv");
+  ASSERT_EQ(all.size(), 2u);
+  const FitResult r = fitStroke(all[0], {});
+  EXPECT_TRUE(r.curve.closed);
+  EXPECT_GE(r.quality.min_radius, r.tolerance);
+  EXPECT_LE(r.quality.max_dev, 1.01 * r.tolerance);
   EXPECT_LT(r.quality.g1_gap, kG1Threshold);
   EXPECT_LT(r.quality.g2_gap, kG2Threshold);
 }
