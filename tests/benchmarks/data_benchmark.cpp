@@ -17,8 +17,8 @@
 // the strokes over the 5% that draws a warning), and with a cap on
 // extrema the smooth parts that have more (QualityFigures::extrema_per_part), of all
 // parts. Strokes fitStroke rejects as degenerate (StrokeError) are counted, not measured.
-// Below the table, per data set, the slowest stroke and the one with the tightest bend,
-// and with a cap, every stroke with a part over it.
+// Below the table, per data set, the slowest stroke, the one furthest from its points and
+// the one with the tightest bend, and with a cap, every stroke with a part over it.
 //
 //   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--data=DIR]
 //
@@ -221,9 +221,11 @@ void printTable() {
     const std::vector<StrokeFigures>& f = g_results[i].fitted;
     if (f.empty()) continue;
     const auto slowest = std::max_element(f.begin(), f.end(), [](auto& a, auto& b) { return a.ms < b.ms; });
+    const auto furthest = std::max_element(f.begin(), f.end(), [](auto& a, auto& b) { return a.deviation < b.deviation; });
     const auto tightest = std::min_element(f.begin(), f.end(), [](auto& a, auto& b) { return a.radius < b.radius; });
-    std::printf("%-12s slowest %s (%.1f ms); tightest bend %s (min_radius/tol %.3g)\n", kDataSets[i].name,
-                slowest->where.c_str(), slowest->ms, tightest->where.c_str(), tightest->radius);
+    std::printf("%-12s slowest %s (%.1f ms); furthest %s (max_dev/tol %.3g); tightest bend %s (min_radius/tol %.3g)\n",
+                kDataSets[i].name, slowest->where.c_str(), slowest->ms, furthest->where.c_str(), furthest->deviation,
+                tightest->where.c_str(), tightest->radius);
     for (const StrokeFigures& s : f)
       if (s.parts_over_cap > 0) std::printf("%-12s over the cap: %s (%d parts)\n", kDataSets[i].name, s.where.c_str(), s.parts_over_cap);
   }
