@@ -221,11 +221,16 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
-  if (polished.max_distance > tol && fit.g2.usable() && !overCap(fit.segments, part.closed, context)) {
+  const bool alphas_within = std::all_of(fit.segments.begin(), fit.segments.end(), [&](const LaSegment& s) {
+    return s.isStraight() || (s.alpha() >= options.min_alpha && s.alpha() <= options.max_alpha);
+  });
+  if (polished.max_distance > tol && fit.g2.usable() && !overCap(fit.segments, part.closed, context) && alphas_within) {
     // Outside the tolerance: kept if closer to the points than the G2 chain it started
     // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
     // (a kink where the user drew none is worse than a miss, which the figures report);
-    // so is one over the cap on extrema (the cap wins over the tolerance).
+    // so is one over the cap on extrema (the cap wins over the tolerance), and one with an
+    // alpha outside the options' range (the paper's inflection segments reach such
+    // alphas; stage 7 keeps its own within it).
     fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }

@@ -32,8 +32,9 @@ enum class SplineStart { kShotThenHalved, kShot, kHalved };
 
 /// Stage 7 on one part, from stage 6's chain or, where that has no G2 chain, from the
 /// spline (fitting/spline_chain.h). The result replaces the part's chain where it is
-/// within the tolerance, closer to the points than that chain, or that chain has gaps or
-/// more extrema than the cap (FitOptions::segmentation.max_extrema); fit.max_dev is then
+/// within the tolerance, closer to the points than that chain, or that chain has gaps,
+/// more extrema than the cap (FitOptions::segmentation.max_extrema) or an alpha outside
+/// [FitOptions::min_alpha, max_alpha]; fit.max_dev is then
 /// known. Without `choose_segments`, only the cap's merges edit the chain (the paper's
 /// pipeline over the cap).
 void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true,

@@ -228,6 +228,14 @@ void fitDataSet(const DataSet& set) {
       EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance + expect.known_miss),
                         "max_dev > tolerance"))
           << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
+      // (DESIGN.md section 6: no bend tighter than the tolerance; alpha within the options')
+      EXPECT_TRUE(check(r.quality.min_radius >= r.tolerance * (1.0 - kDeviationAllowance), "bends tighter"))
+          << where << ": radius " << r.quality.min_radius << " < tolerance " << r.tolerance;
+      for (const CurvePiece& p : r.curve.pieces)
+        EXPECT_TRUE(check(p.segment.isStraight() || (p.segment.alpha() >= options.min_alpha && p.segment.alpha() <= options.max_alpha),
+                          "alpha out of range"))
+            << where << ": a segment's alpha " << p.segment.alpha() << " outside [" << options.min_alpha << ", "
+            << options.max_alpha << "]";
       if (expect.closed) {
         EXPECT_TRUE(check(r.curve.closed, "not closed")) << where << ": should be closed";
       }
@@ -255,8 +263,9 @@ void fitDataSet(const DataSet& set) {
 }
 
 // Every stroke fits without an exception (degenerate ones with StrokeError only), gives
-// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6) within the default tolerance, closed
-// shapes close and corners are kept.
+// a G2 curve (g1 gap < 1e-9 rad, g2 gap < 1e-6) within the default tolerance, bending no
+// tighter than it, with every alpha in the options' range; closed shapes close and
+// corners are kept.
 TEST_P(FitDataTest, EveryStrokeFitsG2WithinToleranceClosesAndKeepsCorners) { fitDataSet(GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, FitDataTest, ::testing::ValuesIn(kDataSets),
