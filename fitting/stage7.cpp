@@ -224,13 +224,15 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
   const bool alphas_within = std::all_of(fit.segments.begin(), fit.segments.end(), [&](const LaSegment& s) {
     return s.isStraight() || (s.alpha() >= options.min_alpha && s.alpha() <= options.max_alpha);
   });
-  if (polished.max_distance > tol && fit.g2.usable() && !overCap(fit.segments, part.closed, context) && alphas_within) {
+  if (polished.max_distance > tol && fit.g2.usable() && !overCap(fit.segments, part.closed, context) &&
+      (alphas_within || polished.max_distance > kAstrayFit * tol)) {
     // Outside the tolerance: kept if closer to the points than the G2 chain it started
     // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
     // (a kink where the user drew none is worse than a miss, which the figures report);
     // so is one over the cap on extrema (the cap wins over the tolerance), and one with an
     // alpha outside the options' range (the paper's inflection segments reach such
-    // alphas; stage 7 keeps its own within it).
+    // alphas; stage 7 keeps its own within it), unless stage 7's chain is astray (a fit
+    // the time budget cut short: a glyph's part 6 tolerances off, its paper chain 0.6).
     fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }
