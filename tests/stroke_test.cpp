@@ -845,6 +845,9 @@ TEST(CleanStroke, AnAddedCornerKeepsItsDistanceAndAClosedStrokeStartsAtItsFirstC
   CleanStroke open;
   for (int i = 0; i < 10; ++i) open.points.emplace_back(i, 0.0), open.source.push_back(static_cast<std::size_t>(i));
   open.corners = {5};
+  // (canBeCorner says beforehand what addCorner will do)
+  for (std::size_t i = 0; i < 10; ++i)
+    EXPECT_EQ(canBeCorner(open, i), i >= 2 && i <= 7 && (i < 4 || i > 6)) << "point " << i;
   EXPECT_FALSE(addCorner(open, 1)) << "too near the start";
   EXPECT_FALSE(addCorner(open, 8)) << "too near the end";
   EXPECT_FALSE(addCorner(open, 4)) << "beside a corner";
@@ -859,6 +862,7 @@ TEST(CleanStroke, AnAddedCornerKeepsItsDistanceAndAClosedStrokeStartsAtItsFirstC
   EXPECT_EQ(closed.points.front(), Vec2(6, 0)) << "the closed stroke starts at its corner";
   EXPECT_EQ(closed.source.front(), 6u);
   EXPECT_EQ(closed.points.back(), Vec2(5, 0));
+  EXPECT_FALSE(canBeCorner(closed, 9));
   EXPECT_FALSE(addCorner(closed, 9)) << "beside the corner across the seam";
   EXPECT_TRUE(addCorner(closed, 4));  // (the stroke's point 0, now at 4)
   EXPECT_EQ(closed.corners, (std::vector<std::size_t>{0, 4}));
