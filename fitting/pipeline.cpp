@@ -133,11 +133,11 @@ std::vector<Vec2> tightBends(const FitResult& r) {
 }
 
 // The point of `stroke` where it turns most (by the angle between its steps in and out)
-// among the point nearest `q` and kCornerReach points either side of it. Where that one
-// is beside a corner (too near to be one, canBeCorner), the point turning most of those
-// that can be: a star's tip with a pen-up hook turns most at the hook's far point, beside
-// the tip's corner, and its side curled into the tip there. (Where it is a corner, the
-// bend is that corner's.)
+// among the point nearest `q` and kCornerReach points either side of it that can be a
+// corner (canBeCorner): a star's tip with a pen-up hook turns most at the hook's far
+// point, beside the tip's corner, and its side curled into the tip there. Where the point
+// turning most is a corner, the bend is that corner's: that point (which addCorner
+// refuses, as it refuses the nearest point where none can be a corner).
 std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
   const std::vector<Vec2>& p = stroke.points;
   const std::size_t n = p.size();
@@ -154,8 +154,7 @@ std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
     if (turn > most) most = turn, best = i;
     if (turn > most_free && canBeCorner(stroke, i)) most_free = turn, best_free = i;
   }
-  const bool is_corner = std::find(stroke.corners.begin(), stroke.corners.end(), best) != stroke.corners.end();
-  return is_corner || canBeCorner(stroke, best) || most_free < 0.0 ? best : best_free;
+  return std::find(stroke.corners.begin(), stroke.corners.end(), best) != stroke.corners.end() ? best : best_free;
 }
 
 // The whole pipeline, stage 7 bending no tighter than the tolerance where

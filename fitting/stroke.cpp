@@ -351,16 +351,15 @@ class Polyline {
 /// step from i is a window (w) long is that step, straight: a font outline's straight
 /// edge is one step, and the window's two samples a side reach past its far corner.
 bool straightLegs(const Polyline& line, std::ptrdiff_t i, const Polyline::Turn& turn, double w) {
+  auto oneStep = [&](std::ptrdiff_t next) { return (line.at(next) - line.at(i)).norm() >= w; };
   auto straight = [&](std::ptrdiff_t from, std::ptrdiff_t to) {
-    const std::ptrdiff_t next = from == i ? i + 1 : i - 1;
-    if ((line.at(next) - line.at(i)).norm() >= w) return true;
     const Vec2 chord = line.at(to) - line.at(from);
     const double length = chord.norm();
     const double bulge =
         cross(chord, line.sum(from + 1, to) - static_cast<double>(to - from - 1) * line.at(from)) / length;
     return to - from - 1 >= kMinLegPoints && std::abs(bulge) / static_cast<double>(to - from - 1) <= kLegStraightness * length;
   };
-  return straight(turn.a, i) && straight(i, turn.b);
+  return (oneStep(i - 1) || straight(turn.a, i)) && (oneStep(i + 1) || straight(i, turn.b));
 }
 
 /// Deliberate corners: turn over the window above corner_min_angle, sharp, then
