@@ -221,11 +221,15 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
-  const bool alphas_within = std::all_of(fit.segments.begin(), fit.segments.end(), [&](const LaSegment& s) {
-    return s.isStraight() || (s.alpha() >= options.min_alpha && s.alpha() <= options.max_alpha);
-  });
-  if (polished.max_distance > tol && fit.g2.usable() && !overCap(fit.segments, part.closed, context) &&
-      (alphas_within || polished.max_distance > kAstrayFit * tol)) {
+  // (the user's limits on the chain it started from: looked at only where stage 7 misses)
+  auto withinLimits = [&] {
+    auto in_range = [&](const LaSegment& s) {
+      return s.isStraight() || (s.alpha() >= options.min_alpha && s.alpha() <= options.max_alpha);
+    };
+    return !overCap(fit.segments, part.closed, context) &&
+           (polished.max_distance > kAstrayFit * tol || std::all_of(fit.segments.begin(), fit.segments.end(), in_range));
+  };
+  if (polished.max_distance > tol && fit.g2.usable() && withinLimits()) {
     // Outside the tolerance: kept if closer to the points than the G2 chain it started
     // from. A chain with curvature or tangent gaps is always replaced: G2 is the promise
     // (a kink where the user drew none is worse than a miss, which the figures report);
