@@ -559,10 +559,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       // change beside the joint, relative to the curvature there.
       std::vector<std::pair<double, std::size_t>> candidates;
       std::vector<std::size_t> excess;  // per part over the cap, its weakest extrema beyond it
-      bool over = false;
       for (const std::vector<std::size_t>& joints : extremumJoints(curveOf(segs, out.corners, closed), diagonal)) {
         if (joints.size() <= cap) continue;
-        over = true;
         const std::size_t from = candidates.size();
         for (std::size_t j : joints) {
           const LaSegment& a = segs[(j + n - 1) % n];
@@ -576,7 +574,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         for (std::size_t k = 0; k + cap < part.size(); ++k)
           if (part[k].second > 0) excess.push_back(part[k].second);
       }
-      if (!over) return;
+      if (candidates.empty()) return;  // (no part over the cap)
       if (!one_closed_part && excess.size() >= 2 && mergedAtOnce(excess)) continue;
       if (one_closed_part && (cap < 4 || n == 1)) {
         if (!circle()) out.over_cap = true;
