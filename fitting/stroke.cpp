@@ -618,7 +618,9 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
         }
       }
     }
-    if (better) return better;
+    // (where even the smoothest closing step turns like a corner, the seam is a corner,
+    // a star's tip drawn past: moved, it left the overshoot as a hook beside the tip)
+    if (better && best <= options.corner_min_angle) return better;
   }
   if (m + 1 - first < kMinClosedPoints) return std::nullopt;
   return Seam{first, m + 1};

@@ -34,6 +34,7 @@
 
 #include "app/io/point_file.h"
 #include "fitting/pipeline.h"
+#include "fitting/stage7.h"
 #include "tests/shared_data_sets.h"
 
 namespace la {
@@ -347,6 +348,23 @@ TEST(FitDataRegression, AHookAtAStarsTipIsACornerNotATightBend) {
   EXPECT_TRUE(r.curve.closed);
   EXPECT_GE(r.quality.min_radius, r.tolerance);
   EXPECT_LE(r.quality.max_dev, 1.01 * r.tolerance);
+  EXPECT_LT(r.quality.g1_gap, kG1Threshold);
+  EXPECT_LT(r.quality.g2_gap, kG2Threshold);
+}
+
+// The slow $1 star #1 starts at a tip and ends past it. Every closing step there turns
+// like a corner (the best 122 degrees): the seam stays at the tip, the overshoot cut.
+// The clean-up once moved the seam to that step anyway, leaving the overshoot as a hook
+// of one sample beside the tip's corner, which the curve followed with a loop 3
+// tolerances from the stroke (or, fitted otherwise, missed by 2 tolerances).
+TEST(FitDataRegression, AStarsTipDrawnPastAtTheSeamStaysItsCorner) {
+  const std::vector<Stroke> all = readStrokes(kData / "strokes/dollar1_unistroke_s01_pilot/csv/slow/star.csv");
+  ASSERT_EQ(all.size(), 2u);
+  const FitResult r = fitStroke(all[1], {});
+  ASSERT_TRUE(r.curve.closed);
+  EXPECT_LT((r.cleaned.points.front() - Vec2(61, 244)).norm(), 1e-9) << "the seam is at the first sample, the tip";
+  EXPECT_LE(r.quality.max_dev, r.tolerance);
+  EXPECT_LE(strayFromPoints(r.curve, r.cleaned.points, r.quality.diagonal), kStrayWarning * r.tolerance);
   EXPECT_LT(r.quality.g1_gap, kG1Threshold);
   EXPECT_LT(r.quality.g2_gap, kG2Threshold);
 }
