@@ -21,6 +21,7 @@
 // the one with the tightest bend, and with a cap, every stroke with a part over it.
 //
 //   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--data=DIR]
+//                                         [--rows=FILE]
 //
 // --max-extrema=N  FitOptions::segmentation.max_extrema = N (fitting/segmentation.h),
 //                  and the table counts the parts over N
@@ -36,6 +37,10 @@
 //                  ~1e-6 of a segment's length in the chain fit's model moved the shared
 //                  data's p99 anywhere between 83 and 230 ms.)
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
+// --rows=FILE      also every stroke's figures, one CSV row each (data set, stroke, time ms,
+//                  segments, extrema_dense, max_dev/tol, min_radius/tol), to compare two
+//                  builds stroke by stroke: the model selection's paths move single strokes
+//                  that the distributions hide
 // Google Benchmark's own flags (--benchmark_filter=glyphs, ...) work as usual.
 
 #include <benchmark/benchmark.h>
@@ -51,6 +56,7 @@
 #include <vector>
 
 #include "app/io/point_file.h"
+#include "core/atomic_file.h"
 #include "fitting/pipeline.h"
 #include "tests/shared_data_sets.h"
 
@@ -65,6 +71,7 @@ struct Settings {
   FitOptions options;  // the defaults, with the flags applied
   int variants = 1;
   fs::path data = LAFAIR_SHARED_DATA_DIR;
+  fs::path rows;  // (empty: none written)
 };
 Settings g_settings;
 
@@ -231,6 +238,18 @@ void printTable() {
   }
 }
 
+// The --rows file: every fitted stroke's figures (written atomically).
+void writeRows() {
+  std::string csv = "data_set,stroke,ms,segments,extrema_dense,max_dev_over_tol,min_radius_over_tol\n";
+  char row[64];
+  for (std::size_t i = 0; i < g_results.size(); ++i)
+    for (const StrokeFigures& s : g_results[i].fitted) {
+      std::snprintf(row, sizeof row, ",%.3f,%d,%d,%.6g,%.6g\n", s.ms, s.segments, s.extrema_dense, s.deviation, s.radius);
+      csv += std::string(kDataSets[i].name) + ",\"" + s.where + "\"" + row;
+    }
+  writeFileAtomically(g_settings.rows, csv);
+}
+
 // Takes this program's flags out of argv (Google Benchmark rejects flags it does not
 // know); false on a malformed one.
 bool takeFlags(int& argc, char** argv) {
@@ -267,6 +286,9 @@ bool takeFlags(int& argc, char** argv) {
       g_settings.options.polish = false;
     } else if (arg.starts_with("--data=")) {
       g_settings.data = arg.substr(std::string_view("--data=").size());
+    } else if (arg.starts_with("--rows=")) {
+      g_settings.rows = arg.substr(std::string_view("--rows=").size());
+      if (g_settings.rows.empty()) return false;
     } else {
       argv[kept++] = argv[i];
     }
@@ -281,7 +303,8 @@ bool takeFlags(int& argc, char** argv) {
 int main(int argc, char** argv) {
   if (!la::takeFlags(argc, argv)) {
     std::fprintf(stderr,
-                 "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--data=DIR] [benchmark flags]\n",
+                 "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--data=DIR] [--rows=FILE] "
+                 "[benchmark flags]\n",
                  argv[0]);
     return 2;
   }
@@ -294,5 +317,11 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   la::printTable();
+  try {
+    if (!la::g_settings.rows.empty()) la::writeRows();
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+    return 1;
+  }
   return 0;
 }
