@@ -491,8 +491,9 @@ struct Seam {
 /// would be a hook, turning sharply against the closing step too). If the closing step
 /// then meets the stroke at a kink and the stroke ran on past its start (overlap or
 /// crossing), the seam moves to the smoothest closing step within the doubly drawn
-/// region (at most kSeamReach * reach long). A real corner at the seam stays a corner
-/// (the stroke keeps it on one side of the step). A stroke closed by its gap keeps its
+/// region (at most kSeamReach * reach long), unless that step still turns like a corner:
+/// then the seam is a corner (a tip drawn past) and stays. A real corner at the seam
+/// stays a corner (the stroke keeps it on one side of the step). A stroke closed by its gap keeps its
 /// seam: there is nothing drawn twice to choose from.
 std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, const CleanupOptions& options) {
   const std::size_t n = p.size();

@@ -15,7 +15,8 @@
 //     drawn past its start), and everything after the point nearest the start (the
 //     crossing) is cut. At the seam, first points that repeat the last one or form a
 //     pen-down slip are dropped, and a kinked seam of a stroke drawn past its start is
-//     moved within the doubly drawn part to where the closing step turns least.
+//     moved within the doubly drawn part to where the closing step turns least, if that
+//     step turns less than a corner (else the seam is a corner drawn past, and stays).
 //     assume_closed skips the test (glyph contours, SVG paths with Z): the stroke is
 //     closed whatever its gap;
 //  4. hooks (open strokes only): a short straight end piece (a hook's worth: at most 6
