@@ -604,7 +604,10 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     const std::size_t head_stride = 1 + head_count / kMaxSeamCandidates, tail_stride = 1 + tail_count / kMaxSeamCandidates;
     std::vector<std::optional<Vec2>> out(n);
     for (std::size_t i = first; i < n && s[i] <= head_limit; i += head_stride) out[i] = departure(i);
-    double best = kink;
+    // (a step is better than the kinked seam where it turns less, and no more than a
+    // corner: a star's tip drawn past has no smooth step, and moved to the smoothest, the
+    // seam left the overshoot as a hook beside the tip)
+    double best = std::min(kink, options.corner_min_angle);
     std::optional<Seam> better;
     for (std::size_t j = n - 1; j >= 3 && s[j] >= tail_limit; j = j >= tail_stride ? j - tail_stride : 0) {
       const auto in = arrival(j);
@@ -619,9 +622,7 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
         }
       }
     }
-    // (where even the smoothest closing step turns like a corner, the seam is a corner,
-    // a star's tip drawn past: moved, it left the overshoot as a hook beside the tip)
-    if (better && best <= options.corner_min_angle) return better;
+    if (better) return better;
   }
   if (m + 1 - first < kMinClosedPoints) return std::nullopt;
   return Seam{first, m + 1};
