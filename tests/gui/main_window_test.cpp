@@ -240,9 +240,18 @@ TEST_F(MainWindowTest, RapidParameterChangesRunOnlyTheNewestBackgroundFit) {
   drawWithMouse(window->canvas(), wave(70));
   window->finishBackgroundFits();
   QThreadPool* pool = QThreadPool::globalInstance();
-  QSemaphore held;
+  // (every holder is running before the changes come in, and has returned before the
+  // semaphores go: a holder still queued when the test ended once waited on a semaphore
+  // gone, and the pool's exit waited on it for ever)
+  QSemaphore started, held, returned;
   const int threads = pool->maxThreadCount();
-  for (int i = 0; i < threads; ++i) pool->start([&held] { held.acquire(); });
+  for (int i = 0; i < threads; ++i)
+    pool->start([&] {
+      started.release();
+      held.acquire();
+      returned.release();
+    });
+  started.acquire(threads);
   FitOptions o = window->document().options();
   constexpr int kChanges = 5;
   for (int k = 1; k <= kChanges; ++k) {
@@ -251,6 +260,7 @@ TEST_F(MainWindowTest, RapidParameterChangesRunOnlyTheNewestBackgroundFit) {
     emit window->parameters()->optionsChanged(o);
   }
   held.release(threads);
+  returned.acquire(threads);
   window->finishBackgroundFits();
   EXPECT_EQ(window->supersededBackgroundFits(), (kChanges - 1) * 2);
   for (const DocumentStroke& s : window->document().strokes()) {
