@@ -53,6 +53,7 @@ constexpr double kSeriesLimit = 1e-4;
 // Newton steps per foot and per evaluation (the feet move little between steps), and
 // nodes per segment of the polyline that gives the first feet when none are passed.
 constexpr int kFootSteps = 1, kFirstFootSteps = 3, kFinalFootSteps = 1;
+constexpr double kFootMoved = 1e-6;  // of a segment's parameter: a foot that moves less has arrived
 constexpr int kCoarseFeetSamples = 64;
 // A point further than this many times the root mean square distance has its foot
 // looked for again over the whole chain (refineOutlyingFeet).
@@ -786,45 +787,116 @@ class ChainProblem {
   const std::vector<FootRange>& ranges_;  // per point (empty: the whole chain)
 };
 
-// The damped, bound- and equality-constrained Gauss-Newton model: unknowns at a bound
-// whose gradient points outwards stay there; the rest solve
-//   [A + lambda D   C^T] [d]    [-g]
-//   [C              0  ] [nu] = [-c]
-// (A = J^T J, D its diagonal, g = J^T r).
+// The damped, bound- and equality-constrained Gauss-Newton model
+//   min  g.d + d.(A + lambda D).d / 2   subject to  C d = -c,  lower <= x + d <= upper
+// (A = J^T J, D its diagonal, g = J^T r), solved by active sets: the unknowns held at a
+// bound are left out of
+//   [A + lambda D   C^T] [d]    [-g - (A + lambda D) d_held]
+//   [C              0  ] [nu] = [-c - C d_held             ]
+// and a held one whose multiplier ((A + lambda D) d + g + C^T nu, its own row) says the
+// model falls inwards is let go. Why not solve with every unknown free and clip the move
+// to the bounds: the clipped move breaks the linearized constraints the others were
+// solved for, and a fit started outside its constraints (a part between corners, a
+// closed chain) then refused every step and stopped where it started.
 class StepSystem {
  public:
   StepSystem(const Eigen::MatrixXd& a, const Eigen::VectorXd& g, const Eigen::MatrixXd& cj, const Eigen::VectorXd& x,
-             const Layout& layout, double lambda)
-      : p_(layout.size), m_(static_cast<int>(cj.rows())) {
-    for (int i = 0; i < p_; ++i) {
-      const bool at_lower = x[i] <= layout.lower[i] && g[i] > 0.0;
-      const bool at_upper = x[i] >= layout.upper[i] && g[i] < 0.0;
-      if (!at_lower && !at_upper) free_.push_back(i);
-    }
-    const int f = static_cast<int>(free_.size());
-    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(f + m_, f + m_);
+             const Eigen::VectorXd& c, const Layout& layout, double lambda)
+      : p_(layout.size), m_(static_cast<int>(cj.rows())), cj_(cj), held_(Eigen::VectorXd::Zero(p_)) {
+    h_ = a;
     const double floor = 1e-12 * std::max(1.0, a.diagonal().maxCoeff());
-    for (int i = 0; i < f; ++i) {
-      for (int k = 0; k < f; ++k) kkt(i, k) = a(free_[i], free_[k]);
-      kkt(i, i) += lambda * std::max(a(free_[i], free_[i]), floor);
-      for (int r = 0; r < m_; ++r) kkt(f + r, i) = kkt(i, f + r) = cj(r, free_[i]);
+    for (int i = 0; i < p_; ++i) h_(i, i) += lambda * std::max(a(i, i), floor);
+    // Primal active sets (Nocedal & Wright 16.5) from d = 0, held where at a bound with
+    // the gradient outwards: each round solves with the held unknowns still; where that
+    // move leaves a bound, d goes only as far as the first bound on the way, whose unknown
+    // is held from then on; else d is that move, and the held unknown whose multiplier
+    // says the model falls inwards most is let go (none: d is the step).
+    std::vector<int> held(p_, 0);  // per unknown: -1 held at its lower bound, 1 at its upper, 0 free
+    for (int i = 0; i < p_; ++i)
+      held[i] = x[i] <= layout.lower[i] && g[i] > 0.0 ? -1 : x[i] >= layout.upper[i] && g[i] < 0.0 ? 1 : 0;
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(p_);
+    // (a round holds or lets go one unknown; more than a few are rare, and the limit only
+    // stops a cycle that rounding could make)
+    for (int round = 0; round < 2 * p_ + 2; ++round) {
+      factor(held);
+      step_ = solve(g, c);
+      double reach = 1.0;  // of the way from d to step_
+      int blocking = -1;
+      for (int i = 0; i < p_; ++i) {
+        if (held[i] != 0 || !std::isfinite(step_[i])) continue;
+        const double to = x[i] + step_[i];
+        const double bound = to < layout.lower[i] ? layout.lower[i] : to > layout.upper[i] ? layout.upper[i] : to;
+        if (bound == to) continue;
+        const double fraction = (bound - x[i] - d[i]) / (step_[i] - d[i]);
+        if (fraction < reach) reach = std::max(fraction, 0.0), blocking = i;
+      }
+      if (blocking >= 0) {
+        d += reach * (step_ - d);
+        held[blocking] = x[blocking] + step_[blocking] < layout.lower[blocking] ? -1 : 1;
+        d[blocking] = (held[blocking] < 0 ? layout.lower[blocking] : layout.upper[blocking]) - x[blocking];
+        held_ = d;
+        for (int i = 0; i < p_; ++i)
+          if (held[i] == 0) held_[i] = 0.0;
+        continue;
+      }
+      d = step_;
+      if (std::all_of(held.begin(), held.end(), [](int h) { return h == 0; })) break;
+      const Eigen::VectorXd multiplier = h_ * step_ + g + cj_.transpose() * nu_;
+      int release = -1;
+      double worst = 0.0;
+      for (int i = 0; i < p_; ++i) {
+        const double inward = held[i] * multiplier[i];  // > 0: the model falls inwards
+        if (inward > worst) worst = inward, release = i;
+      }
+      if (release < 0) break;
+      held[release] = 0;
+      held_[release] = 0.0;
     }
-    lu_.compute(kkt);
   }
-  // The move for gradient g and constraint values c (zero on the fixed unknowns).
-  Eigen::VectorXd solve(const Eigen::VectorXd& g, const Eigen::VectorXd& c) const {
-    const int f = static_cast<int>(free_.size());
-    Eigen::VectorXd rhs(f + m_);
-    for (int i = 0; i < f; ++i) rhs[i] = -g[free_[i]];
-    for (int r = 0; r < m_; ++r) rhs[f + r] = -c[r];
-    const Eigen::VectorXd solution = lu_.solve(rhs);
-    Eigen::VectorXd step = Eigen::VectorXd::Zero(p_);
-    for (int i = 0; i < f; ++i) step[free_[i]] = solution[i];
-    return step;
+  // The move the constructor found (gradient g, constraint values c).
+  const Eigen::VectorXd& step() const { return step_; }
+  // The move for another gradient g and constraint values c on the same active set, the
+  // held unknowns still (the geodesic acceleration's).
+  Eigen::VectorXd correction(const Eigen::VectorXd& g, const Eigen::VectorXd& c) const {
+    return solveWith(g, c, Eigen::VectorXd::Zero(p_));
   }
 
  private:
+  void factor(const std::vector<int>& held) {
+    free_.clear();
+    for (int i = 0; i < p_; ++i)
+      if (held[i] == 0) free_.push_back(i);
+    const int f = static_cast<int>(free_.size());
+    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(f + m_, f + m_);
+    for (int i = 0; i < f; ++i) {
+      for (int k = 0; k < f; ++k) kkt(i, k) = h_(free_[i], free_[k]);
+      for (int r = 0; r < m_; ++r) kkt(f + r, i) = kkt(i, f + r) = cj_(r, free_[i]);
+    }
+    lu_.compute(kkt);
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& g, const Eigen::VectorXd& c) { return solveWith(g, c, held_, &nu_); }
+  Eigen::VectorXd solveWith(const Eigen::VectorXd& g, const Eigen::VectorXd& c, const Eigen::VectorXd& held,
+                            Eigen::VectorXd* nu = nullptr) const {
+    const int f = static_cast<int>(free_.size());
+    // (the held moves enter the right-hand side; free entries of `held` are zero)
+    const bool moves = held.any();  // (.any(): nonzero entries)
+    const Eigen::VectorXd g_held = moves ? Eigen::VectorXd(g + h_ * held) : g;
+    const Eigen::VectorXd c_held = moves ? Eigen::VectorXd(c + cj_ * held) : c;
+    Eigen::VectorXd rhs(f + m_);
+    for (int i = 0; i < f; ++i) rhs[i] = -g_held[free_[i]];
+    for (int r = 0; r < m_; ++r) rhs[f + r] = -c_held[r];
+    const Eigen::VectorXd solution = lu_.solve(rhs);
+    Eigen::VectorXd step = held;
+    for (int i = 0; i < f; ++i) step[free_[i]] = solution[i];
+    if (nu) *nu = solution.tail(m_);
+    return step;
+  }
+
   int p_, m_;
+  Eigen::MatrixXd h_;
+  const Eigen::MatrixXd& cj_;
+  Eigen::VectorXd held_;  // the move of each held unknown (zero for a free one)
+  Eigen::VectorXd step_, nu_;
   std::vector<int> free_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };
@@ -835,6 +907,19 @@ double capFactor(const Eigen::VectorXd& step, const Eigen::VectorXd& caps) {
   for (Eigen::Index i = 0; i < step.size(); ++i)
     if (std::abs(step[i]) > caps[i]) shrink = std::min(shrink, caps[i] / std::abs(step[i]));
   return shrink;
+}
+
+// Projects the feet once more on the model at x; true where one moved. Feet handed in
+// far off (an edit's) move a few projection steps per evaluation, and the tangent
+// distance from a foot far off can be smaller than from the true foot: a merit that
+// rises as the feet arrive is no reason to stop.
+bool feetMoved(const ChainProblem& problem, const ChainModel& model, std::vector<ChainFoot>& feet,
+               std::vector<FootFrame>& frames, Eigen::VectorXd& r, Eigen::VectorXd& c) {
+  const std::vector<ChainFoot> before = feet;
+  problem.evaluate(model, feet, frames, r, c);
+  for (std::size_t k = 0; k < feet.size(); ++k)
+    if (feet[k].segment != before[k].segment || std::abs(feet[k].u - before[k].u) > kFootMoved) return true;
+  return false;
 }
 
 // Levenberg-Marquardt on the merit |r|^2 + kConstraintMerit |c|^2 from x (and the
@@ -855,10 +940,10 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   Jacobian jac;
   Eigen::MatrixXd cjac;
   double lambda = kInitialLambda;
-  ChainModel trial_model;
+  ChainModel trial_model, corrected_model;
   std::vector<ChainFoot> trial_feet, held;
-  std::vector<FootFrame> trial_frames;
-  Eigen::VectorXd trial_r, trial_c;
+  std::vector<FootFrame> trial_frames, corrected_frames;
+  Eigen::VectorXd trial_r, trial_c, corrected_r, corrected_c;
   for (int local = 0; local < max_iterations; ++local) {
     if (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline) break;
     ++iterations;
@@ -867,8 +952,8 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
     const Eigen::VectorXd g = jac.transpose() * r;
     bool accepted = false, converged = false;
     for (; lambda < kMaxLambda; lambda *= kLambdaGrowth) {
-      const StepSystem system(a, g, cjac, x, layout, lambda);
-      Eigen::VectorXd step = system.solve(g, c);
+      const StepSystem system(a, g, cjac, x, c, layout, lambda);
+      Eigen::VectorXd step = system.step();
       step *= capFactor(step, step_caps);
       {
         // Geodesic acceleration (Transtrum & Sethna 2012): the second directional
@@ -881,7 +966,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         problem.evaluate(trial_model, held, trial_frames, trial_r, trial_c, false);
         const Eigen::VectorXd r2 = (2.0 / kProbe) * ((trial_r - r) / kProbe - jac * step);
         const Eigen::VectorXd c2 = (2.0 / kProbe) * ((trial_c - c) / kProbe - cjac * step);
-        const Eigen::VectorXd accel = system.solve(jac.transpose() * r2, c2);
+        const Eigen::VectorXd accel = system.correction(jac.transpose() * r2, c2);
         if (2.0 * accel.norm() <= kMaxAcceleration * step.norm()) step += 0.5 * accel;
       }
       Eigen::VectorXd trial = (x + step).cwiseMax(layout.lower).cwiseMin(layout.upper);
@@ -892,12 +977,20 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         // Second-order correction (Nocedal & Wright 18.3): the step met the linearized
         // constraints; the least-norm move back onto the constraints themselves avoids
         // rejecting good steps for their second-order violation (the Maratos effect).
+        // Kept only where it lowers the merit: clipped at a bound, it can break the
+        // constraints more than the step did.
         const Eigen::VectorXd corrected = movedOntoConstraints(layout, trial, cjac, trial_c);
-        if (corrected.allFinite() && buildModel(layout, corrected, false, trial_model)) {
-          trial = corrected;
-          problem.evaluate(trial_model, trial_feet, trial_frames, trial_r, trial_c);
-        } else if (!buildModel(layout, trial, false, trial_model)) {
-          continue;
+        std::vector<ChainFoot> corrected_feet = trial_feet;
+        if (corrected.allFinite() && buildModel(layout, corrected, false, corrected_model)) {
+          problem.evaluate(corrected_model, corrected_feet, corrected_frames, corrected_r, corrected_c);
+          if (merit(corrected_r, corrected_c) < merit(trial_r, trial_c)) {
+            trial = corrected;
+            std::swap(trial_model, corrected_model);
+            std::swap(trial_feet, corrected_feet);
+            std::swap(trial_frames, corrected_frames);
+            std::swap(trial_r, corrected_r);
+            std::swap(trial_c, corrected_c);
+          }
         }
       }
       const double trial_phi = merit(trial_r, trial_c);
@@ -916,6 +1009,12 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
     if (accepted) {  // (trial_model is at x)
       std::swap(model, trial_model);
       addDerivatives(layout, x, model);
+    }
+    if (!accepted && feetMoved(problem, model, feet, frames, r, c)) {
+      // (the feet were still on their way: the merit at x is measured anew)
+      phi = merit(r, c);
+      lambda = kInitialLambda;
+      continue;
     }
     // No step lowers the merit: a minimum to the steps' resolution.
     if (!accepted || converged) return SolveStatus::kConverged;

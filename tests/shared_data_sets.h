@@ -57,4 +57,15 @@ inline std::vector<std::filesystem::path> filesOf(const std::filesystem::path& f
   return out;
 }
 
+/// Variant k of a stroke (data_benchmark --variants): scaled by 1 + k/10, moved by
+/// k (12.345, -6.789), turned by k quarter turns. The fit is invariant under all three.
+inline Stroke variantOf(const Stroke& stroke, int k) {
+  Stroke out = stroke;
+  for (StrokeSample& s : out.samples) {
+    s.p = (1.0 + 0.1 * k) * s.p + k * Vec2(12.345, -6.789);
+    for (int q = 0; q < k % 4; ++q) s.p = Vec2(-s.p.y(), s.p.x());
+  }
+  return out;
+}
+
 }  // namespace la::test

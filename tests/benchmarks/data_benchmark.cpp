@@ -98,16 +98,6 @@ struct SetFigures {
 };
 std::vector<SetFigures> g_results(std::size(kDataSets));
 
-// Variant k of a stroke (--variants): scaled, moved and turned as the flag says.
-Stroke variantOf(const Stroke& stroke, int k) {
-  Stroke out = stroke;
-  for (StrokeSample& s : out.samples) {
-    s.p = (1.0 + 0.1 * k) * s.p + k * Vec2(12.345, -6.789);
-    for (int q = 0; q < k % 4; ++q) s.p = Vec2(-s.p.y(), s.p.x());
-  }
-  return out;
-}
-
 StrokeFigures figuresOf(std::string where, const FitResult& r, int cap) {
   const QualityFigures& q = r.quality;
   StrokeFigures f{std::move(where), r.timings.total_ms, q.segments, q.extrema_dense, q.max_dev / r.tolerance,
@@ -130,7 +120,7 @@ void BM_FitDataSet(benchmark::State& state, std::size_t index) {
       for (std::size_t k = 0; k < some.size(); ++k) {
         where.push_back(fs::relative(file, g_settings.data).string() + " #" + std::to_string(k) +
                         (v > 0 ? " variant " + std::to_string(v) : ""));
-        strokes.push_back(variantOf(some[k], v));
+        strokes.push_back(test::variantOf(some[k], v));
       }
   }
   if (strokes.empty()) {
