@@ -47,7 +47,7 @@ constexpr GridRule kFittingGrid{0.25, 0.5, 0.5, 1e-4};
 constexpr GridRule kJacobianGrid{0.5, 0.5, 0.25, 1e-3};
 constexpr GridRule kMeasuringGrid{0.1, 0.0625, 0.7071067811865476, 1e-6};
 constexpr int kMaxPanels = 512;
-constexpr int kPanelNodes = 3;  // Gauss-Legendre nodes per panel (the positions at panel ends)
+constexpr int kPanelNodes = 3;  // Gauss-Legendre nodes per panel where buildPanels does not take its Hermite rule
 // Below this |x| the series of expm1(x)/x and log1p(x)/x are exact to rounding.
 constexpr double kSeriesLimit = 1e-4;
 // Newton steps per foot and per evaluation (the feet move little between steps), and
