@@ -715,7 +715,7 @@ Eigen::MatrixXd constraintJacobian(const Layout& layout, const ChainModel& m) {
 Eigen::VectorXd movedOntoConstraints(const Layout& layout, const Eigen::VectorXd& x, const Eigen::MatrixXd& cjac,
                                      const Eigen::VectorXd& violation, bool hold_at_bounds = false) {
   Eigen::MatrixXd c = cjac;
-  Eigen::VectorXd moved = x;
+  Eigen::VectorXd moved;
   for (int round = 0; round <= layout.size; ++round) {
     moved = x + c.transpose() * (c * c.transpose()).ldlt().solve(-violation);
     if (!hold_at_bounds) break;
@@ -857,7 +857,7 @@ class StepSystem {
  public:
   StepSystem(const Eigen::MatrixXd& a, const Eigen::VectorXd& g, const Eigen::MatrixXd& cj, const Eigen::VectorXd& x,
              const Eigen::VectorXd& c, const Layout& layout, double lambda)
-      : p_(layout.size), m_(static_cast<int>(cj.rows())), cj_(cj), held_(Eigen::VectorXd::Zero(p_)) {
+      : p_(layout.size), m_(static_cast<int>(cj.rows())), cj_(cj) {
     h_ = a;
     const double floor = 1e-12 * std::max(1.0, a.diagonal().maxCoeff());
     for (int i = 0; i < p_; ++i) h_(i, i) += lambda * std::max(a(i, i), floor);
@@ -873,7 +873,7 @@ class StepSystem {
     // (a round holds or lets go one unknown; more than a few are rare, and the limit only
     // stops a cycle that rounding could make)
     for (int round = 0; round < 2 * p_ + 2; ++round) {
-      factor(held);
+      factor(held, d);
       step_ = solve(g, c);
       double reach = 1.0;  // of the way from d to step_
       int blocking = -1;
@@ -889,9 +889,6 @@ class StepSystem {
         d += reach * (step_ - d);
         held[blocking] = x[blocking] + step_[blocking] < layout.lower[blocking] ? -1 : 1;
         d[blocking] = (held[blocking] < 0 ? layout.lower[blocking] : layout.upper[blocking]) - x[blocking];
-        held_ = d;
-        for (int i = 0; i < p_; ++i)
-          if (held[i] == 0) held_[i] = 0.0;
         continue;
       }
       d = step_;
@@ -905,7 +902,6 @@ class StepSystem {
       }
       if (release < 0) break;
       held[release] = 0;
-      held_[release] = 0.0;
     }
   }
   // The move the constructor found (gradient g, constraint values c).
@@ -917,10 +913,12 @@ class StepSystem {
   }
 
  private:
-  void factor(const std::vector<int>& held) {
+  // The KKT system of the unknowns not held; the held ones keep their moves in d.
+  void factor(const std::vector<int>& held, const Eigen::VectorXd& d) {
     free_.clear();
+    held_ = d;
     for (int i = 0; i < p_; ++i)
-      if (held[i] == 0) free_.push_back(i);
+      if (held[i] == 0) free_.push_back(i), held_[i] = 0.0;
     const int f = static_cast<int>(free_.size());
     Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(f + m_, f + m_);
     for (int i = 0; i < f; ++i) {
@@ -996,7 +994,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   Eigen::MatrixXd cjac;
   double lambda = kInitialLambda;
   ChainModel trial_model, corrected_model;
-  std::vector<ChainFoot> trial_feet, held;
+  std::vector<ChainFoot> trial_feet, corrected_feet, held;
   std::vector<FootFrame> trial_frames, corrected_frames;
   Eigen::VectorXd trial_r, trial_c, corrected_r, corrected_c;
   for (int local = 0; local < max_iterations; ++local) {
@@ -1035,7 +1033,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         // Kept only where it lowers the merit: clipped at a bound, it can break the
         // constraints more than the step did.
         const Eigen::VectorXd corrected = movedOntoConstraints(layout, trial, cjac, trial_c);
-        std::vector<ChainFoot> corrected_feet = trial_feet;
+        corrected_feet = trial_feet;
         if (corrected.allFinite() && buildModel(layout, corrected, false, corrected_model)) {
           problem.evaluate(corrected_model, corrected_feet, corrected_frames, corrected_r, corrected_c);
           if (merit(corrected_r, corrected_c) < merit(trial_r, trial_c)) {
