@@ -31,6 +31,13 @@ inline G2Options g2OptionsOf(const FitOptions& options, double diagonal) {
   return g2;
 }
 
+/// Whether stage 7 bends no tighter than the tolerance (ChainFitOptions::max_curvature).
+enum class RadiusBound {
+  kBoundThenFree,  // bounded; a part that misses the tolerance on the bound is fitted again without it, kept if closer
+  kFree,           // not bounded
+  kStrict,         // bounded, no part fitted again: the bound wins over the tolerance
+};
+
 struct FitContext {
   const FitOptions& options;
   double tolerance = 0.0;  // absolute max distance, as used
@@ -40,8 +47,7 @@ struct FitContext {
   /// When the fit's time budget (FitOptions::time_budget_ms) runs out: stage 7 stops
   /// editing and keeps the best G2 chain it has. Clock::time_point::max(): no budget.
   Clock::time_point deadline = Clock::time_point::max();
-  /// Stage 7 bends no tighter than the tolerance (ChainFitOptions::max_curvature).
-  bool bound_radius = true;
+  RadiusBound radius_bound = RadiusBound::kBoundThenFree;
 
   bool outOfTime() const { return deadline != Clock::time_point::max() && Clock::now() >= deadline; }
 

@@ -157,10 +157,10 @@ std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
   return std::find(stroke.corners.begin(), stroke.corners.end(), best) != stroke.corners.end() ? best : best_free;
 }
 
-// The whole pipeline, stage 7 bending no tighter than the tolerance where
-// `bound_radius`, with corners also where the points turn most near each of `corners_at`
-// (cornerNear); the time budget counts from `start`.
-FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, bool bound_radius,
+// The whole pipeline, stage 7's radius bounded as `radius_bound` says, with corners also
+// where the points turn most near each of `corners_at` (cornerNear); the time budget
+// counts from `start`.
+FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, RadiusBound radius_bound,
                   Clock::time_point start, const std::vector<Vec2>& corners_at = {}) {
   FitResult r;
   const auto cleanup_start = Clock::now();  // (a rerun's start is the first run's)
@@ -175,7 +175,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
-  context.bound_radius = bound_radius;
+  context.radius_bound = radius_bound;
   if (options.time_budget_ms > 0.0)
     context.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
 
@@ -301,7 +301,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   auto fitOneBounded = [&](const Part& part, bool other_starts) {
     const std::size_t room = polish_room;
     PartFit fit = fitOneWith(part, other_starts, context);
-    if (!polishing || !context.bound_radius || context.outOfTime() || r.over_polish_limit) return fit;
+    if (!polishing || context.radius_bound != RadiusBound::kBoundThenFree || context.outOfTime() || r.over_polish_limit) return fit;
     const auto worst = [&](PartFit& f) { return worstOf(f, part); };
     const double miss = worst(fit);
     const bool on_bound = largestKappa(fit.segments) * r.tolerance > kOnTheBound;
@@ -309,7 +309,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     const std::size_t bounded_room = polish_room;
     polish_room = room;
     FitContext unbounded = context;
-    unbounded.bound_radius = false;
+    unbounded.radius_bound = RadiusBound::kFree;
     PartFit other = fitOneWith(part, other_starts, unbounded);
     if (other.g2.usable() && worst(other) < worst(fit)) return other;
     polish_room = bounded_room;
@@ -463,7 +463,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     throw StrokeError("the stroke has " + std::to_string(stroke.samples.size()) + " samples, more than " +
                       std::to_string(options.max_points) + " (FitOptions::max_points; lafit --max-points raises it)");
   const double hook_tolerance = hookTolerance(stroke, options);
-  FitResult r = fitOnce(stroke, options, hook_tolerance, true, start);
+  FitResult r = fitOnce(stroke, options, hook_tolerance, RadiusBound::kBoundThenFree, start);
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
   // and the corners stage 7 adds do not always find: where the bound on the radius
   // costs the tolerance, the fit without it, if that keeps the tolerance. (fitOnce does
@@ -479,7 +479,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // (only where some joint is on the bound: elsewhere the fit without it is the same)
   const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
   if (polishing && bounded && !r.cleaned.straight && !r.out_of_time && !r.over_polish_limit && misses(r)) {
-    FitResult free = fitOnce(stroke, options, hook_tolerance, false, start);
+    FitResult free = fitOnce(stroke, options, hook_tolerance, RadiusBound::kFree, start);
     if (!misses(free)) r = std::move(free);
   }
   // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
@@ -497,12 +497,22 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     FitOptions bounded_time = options;
     const double spent = msSince(start);
     bounded_time.time_budget_ms = options.time_budget_ms > 0.0 ? std::min(options.time_budget_ms, 2.0 * spent) : 2.0 * spent;
-    FitResult cornered = fitOnce(stroke, bounded_time, hook_tolerance, true, start, corners_at);
+    FitResult cornered = fitOnce(stroke, bounded_time, hook_tolerance, RadiusBound::kBoundThenFree, start, corners_at);
     if (cornered.out_of_time || !cornered.g2.usable() ||
         cornered.quality.max_dev > std::max(kCorneredMiss * cornered.tolerance, r.quality.max_dev) ||
         !(cornered.quality.max_abs_kappa < r.quality.max_abs_kappa))
       break;
     r = std::move(cornered);
+  }
+  // Where it still does (a part that missed the tolerance on the bound was fitted again
+  // without it, as above, also after its tight bends became corners: a capped stroke),
+  // the stroke with those corners and the bound kept everywhere: no bend tighter than
+  // the tolerance comes first, as the cap on extrema does, and the warnings say what it
+  // costs.
+  if (!corners_at.empty() && !r.out_of_time && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance) {
+    FitResult strict = fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, corners_at);
+    if (strict.g2.usable() && !strict.out_of_time && strict.quality.max_abs_kappa < r.quality.max_abs_kappa)
+      r = std::move(strict);
   }
   r.timings.total_ms = msSince(start);
   return r;

@@ -100,7 +100,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
   so.deadline = co.deadline = context.deadline;
   // (DESIGN.md section 6: a bend tighter than the tolerance is a corner; a hair inside,
   // so that rounding leaves no radius under it)
-  if (context.bound_radius) co.max_curvature = (1.0 - 1e-9) / context.tolerance;
+  if (context.radius_bound != RadiusBound::kFree) co.max_curvature = (1.0 - 1e-9) / context.tolerance;
   return so;
 }
 

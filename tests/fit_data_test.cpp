@@ -352,6 +352,22 @@ TEST(FitDataRegression, AHookAtAStarsTipIsACornerNotATightBend) {
   expectG2(r);
 }
 
+// An Omniglot stroke (Early_Aramaic 0255_19) under a cap of 0 extrema: a part missed the
+// tolerance on the bound of the radius and was fitted again without it (kept, as closer),
+// and again after its tight bends became corners, so the curve bent at 0.46 tolerances.
+// Now the stroke is fitted once more with those corners and the bound everywhere.
+TEST(FitDataRegression, ACappedStrokeBendsNoTighterThanTheTolerance) {
+  const std::vector<Stroke> all =
+      readStrokes(kData / "strokes/omniglot_small1_sample/csv/Early_Aramaic/character05/0255_19.csv");
+  ASSERT_FALSE(all.empty());
+  FitOptions options;
+  options.segmentation.max_extrema = 0;
+  const FitResult r = fitStroke(all[0], options);
+  EXPECT_GE(r.quality.min_radius, (1.0 - 1e-6) * r.tolerance);
+  EXPECT_EQ(r.quality.max_extrema_per_part, 0);
+  expectG2(r);
+}
+
 // The slow $1 star #0, scaled, moved and turned as data_benchmark --variants does: every
 // variant within the tolerance. Three of eight missed it by 57% once, where the chain
 // fit across a corner started outside its constraints with an unknown on its bound: the
