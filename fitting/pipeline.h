@@ -53,7 +53,9 @@
 // start, and for pixel-quantized strokes stages 2-6 on the points with their stairs
 // smoothed a third; the best result stays (G2 first, then the cap, then the deviation).
 // Stage 7 bends no tighter than the tolerance; where that costs the tolerance (a tight
-// bend the clean-up did not take for a corner), the whole fit runs again without it.
+// bend the clean-up did not take for a corner), the fit runs again without the bound,
+// then with corners at the bends that came out tighter, and, where one still does (a
+// capped stroke's part), with those corners and the bound everywhere: the bound wins.
 
 #include <optional>
 #include <string>
