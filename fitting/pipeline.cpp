@@ -486,10 +486,13 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
   // again with the bound, in about the time the fit took so far: kept where it bends less
   // tightly and keeps the tolerance (or misses it by no more, or by kCorneredMiss).
+  // (a curve bending tighter than the tolerance that another fit may mend)
+  auto mendable = [&](const FitResult& f) {
+    return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit &&
+           f.quality.max_abs_kappa * f.tolerance > kTighterThanTolerance;
+  };
   std::vector<Vec2> corners_at;
-  for (int round = 0; round < kTightBendRounds && polishing && !r.cleaned.straight && !r.out_of_time &&
-                      !r.over_polish_limit && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance;
-       ++round) {
+  for (int round = 0; round < kTightBendRounds && mendable(r); ++round) {
     const std::vector<Vec2> more = tightBends(r);
     CleanStroke with = r.cleaned;  // (where no corner can go, no fit is tried)
     if (std::none_of(more.begin(), more.end(), [&](const Vec2& q) { return addCorner(with, cornerNear(with, q)); })) break;
@@ -509,7 +512,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // the stroke with those corners and the bound kept everywhere: no bend tighter than
   // the tolerance comes first, as the cap on extrema does, and the warnings say what it
   // costs.
-  if (!corners_at.empty() && !r.out_of_time && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance) {
+  if (!corners_at.empty() && mendable(r)) {
     FitResult strict = fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, corners_at);
     if (strict.g2.usable() && !strict.out_of_time && strict.quality.max_abs_kappa < r.quality.max_abs_kappa)
       r = std::move(strict);
