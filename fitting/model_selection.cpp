@@ -401,9 +401,11 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * keep_within;
   };
   // An edit is kept if the refitted chain is within the tolerance (or no further outside
-  // it than before) and the points do not object (the F-test above).
-  auto keep = [&](const ChainFitResult& r) {
+  // it than before) and the points do not object (the F-test above); a merge at a weak
+  // curvature extremum on the tolerance alone (fewer extrema come before the squares).
+  auto keep = [&](const ChainFitResult& r, bool fewer_extrema) {
     if (r.max_distance > std::max(options.tolerance, out.fit.max_distance)) return false;
+    if (fewer_extrema) return true;
     const double variance = out.fit.ssr / std::max(1.0, n_points - out.fit.unknowns);
     const double f = (r.ssr - out.fit.ssr) / std::max(1, out.fit.unknowns - r.unknowns) / std::max(variance, 1e-300);
     return f < options.significance;
@@ -424,6 +426,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         Kind kind;
         std::size_t index;
         std::size_t count = 1;  // segments collapsed or straightened together
+        bool extremum = false;  // a merge at a (weak) curvature extremum
       };
       std::vector<Candidate> candidates;
       for (std::size_t i = 0; i < n; ++i) {
@@ -463,7 +466,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         const bool monotone = (k0 - kj) * (kj - k1) > 0.0;
         const double change = std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj;
         if (monotone || change < options.weak_extremum)
-          candidates.push_back({1.0 + (monotone ? 0.0 : change), Kind::kMerge, j});
+          candidates.push_back({1.0 + (monotone ? 0.0 : change), Kind::kMerge, j, 1, !monotone});
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
@@ -479,7 +482,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         if (!rebuilt || hopelessNearby(*e, *rebuilt, c.index, keep_within)) continue;
         auto r = attemptRebuilt(*e, *rebuilt, keep_within);
         // (a line only within the tolerance: bent again, it is a crude start for a split)
-        if (!r || !keep(r->fit) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
+        if (!r || !keep(r->fit, c.extremum) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         take(std::move(*r));
         ++(c.kind == Kind::kCollapse ? out.collapses : c.kind == Kind::kMerge ? out.merges : out.straightenings);
         changed = true;

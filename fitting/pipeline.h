@@ -10,9 +10,11 @@
 //     figures report the deviation), every alpha in [min_alpha, max_alpha];
 //   - every point within the tolerance, no bend tighter than it (tighter is a corner);
 //   - the fewest curvature extrema, then the fewest segments, then the least squares.
-// The last line is approached, not proven: stage 7's edits keep a merge or collapse only
-// where the points do not object (an F-test), so a curve may keep an extremum the
-// tolerance alone would let go.
+// The last line is approached, not proven: stage 7's edits merge at every weak
+// curvature extremum the tolerance lets go, one at a time (a search, not an optimum),
+// but try no merge at a strong one, and keep a merge at a monotone joint or a collapse
+// only where the points do not object (an F-test); so a curve may keep an extremum or a
+// segment the tolerance alone would let go.
 //
 //   1 cleanStroke       duplicates, hooks, corners, closed, straight?   fitting/stroke.h
 //     noiseOf           the tolerance's floor                           fitting/stroke_noise.h

@@ -155,6 +155,26 @@ TEST(SelectChain, RemovesASliverAtACurvatureMaximum) {
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
+// A weak curvature maximum (0.010 -> 0.0105 -> 0.010) that 400 points show (the F-test
+// of nested models objects to the merge: F 26) but the tolerance lets go (one segment
+// strays 0.14 of 0.2): merged, the fewest extrema coming before the least squares. One
+// segment, within the tolerance of every point.
+TEST(SelectChain, MergesAWeakExtremumTheToleranceLetsGo) {
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.2, 0.010, {{1.0, 80.0, 0.0105}, {1.0, 80.0, 0.010}});
+  const std::vector<Vec2> points = sampleChain(truth, 200, kSigma, 7);
+  const SelectionOptions options = selection();
+  const ChainFitResult two = withoutEdits(truth, points, options);
+  const ChainFitResult one = withoutEdits(buildChain({0, 0}, 0.2, 0.010, {{1.0, 160.0, 0.0101}}), points, options);
+  ASSERT_LE(maxDistance(one.segments, points), kTolerance) << "the merge misses the tolerance";
+  const double variance = two.ssr / static_cast<double>(static_cast<int>(points.size()) - two.unknowns);
+  const double f = (one.ssr - two.ssr) / (two.unknowns - one.unknowns) / variance;
+  ASSERT_GT(f, options.significance) << "the points do not object to the merge";
+  const SelectionResult r = selectChain(truth, points, {}, options);
+  EXPECT_GE(r.merges, 1);
+  EXPECT_EQ(r.fit.segments.size(), 1u);
+  EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+}
+
 // A spike: at the truth's curvature minimum (0.03 -> 0.01 -> 0.03), two stubs far
 // shorter than the tolerance, 0 -> 2 -> 0, between neighbours ending at zero curvature.
 // No point places them; they only kink the chain. Neither can go alone (the other would
