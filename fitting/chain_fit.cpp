@@ -1331,8 +1331,9 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   const bool admissible_before = c.size() == 0 || c.norm() <= kAdmissible;  // the start meets the constraints
 
   // A step that lowers the sum of squared distances by less than a fraction of one
-  // point's noise variance moves the chain by less than the noise can tell.
-  const double least = kNegligibleDecrease * noise * noise;
+  // point's noise variance moves the chain by less than the noise can tell (nor, by the
+  // caller's least_decrease, by a visible part of the tolerance).
+  const double least = std::max(kNegligibleDecrease * noise * noise, options.least_decrease / (scale * scale));
   int iterations = 0;
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
                                       options.deadline, x, used_feet, model, iterations);

@@ -100,12 +100,16 @@ struct ChainFitOptions {
   /// No step starts after this (FitOptions::time_budget_ms): the best chain so far is
   /// kept, as at the iteration limit.
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
-  /// Stop when a step lowers the cost by less than this fraction (or by less than a
-  /// tenth of one point's noise variance). (At 1e-7, fits of noise-free outlines, whose
-  /// noise floor is nil, crawled on for dozens of steps of ~1e-6 each at a large
-  /// damping: DejaVu S took 160 ms, now 124; the shared data's curves within the
-  /// tolerance and their extrema as before.)
-  double relative_decrease = 1e-4;
+  /// Stop when a step lowers the cost by less than this fraction, or by less than a
+  /// tenth of one point's noise variance, or by less than least_decrease.
+  double relative_decrease = 1e-7;
+  /// The smallest decrease of the sum of squared distances worth a step (world units
+  /// squared; 0: none). Stage 7 sets it from the tolerance: a noise-free outline has no
+  /// noise floor to stop at, and its fits crawled on for dozens of steps lowering the cost
+  /// by ~1e-6 of itself each (DejaVu S: 32 + 8 + 32 steps that moved its max distance by
+  /// 0.2%). A relative stop of 1e-4 ended those but also capped fits still 50
+  /// tolerances off, which then ended further off.
+  double least_decrease = 0.0;
   /// Iterate on at most this many points (0: all): an even subsample, the ends kept,
   /// each picked point standing in for its bin of neighbours by their centroid where the
   /// noise (below) is given and the chain is nearly straight across the bin, so the fit

@@ -21,6 +21,10 @@ namespace {
 // 32) but cost about 1 ms on a 1,000-point stroke, half the time budget.
 constexpr std::size_t kFitPoints = 250;
 constexpr int kFitIterations = 8;
+// A step of stage 7's fit lowering the sum of squared distances by less than the square
+// of this fraction of the tolerance moves no point by a visible part of it: the fit stops
+// (ChainFitOptions::least_decrease).
+constexpr double kNegligibleMove = 0.01;
 // Stage 7 selects its segments for this much inside the tolerance: its model (~1e-6 of
 // a segment's length) and the move onto a corner (below) shift the exact chain a little.
 constexpr double kSelectionMargin = 0.01;
@@ -95,6 +99,7 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
   co.max_points = kFitPoints * parts;
   co.max_iterations = kFitIterations;
   co.noise = context.noise.sigma;
+  co.least_decrease = (kNegligibleMove * context.tolerance) * (kNegligibleMove * context.tolerance);
   so.max_extrema = options.segmentation.max_extrema;
   so.diagonal = context.diagonal;
   so.deadline = co.deadline = context.deadline;
