@@ -121,6 +121,30 @@ TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
         << "segment " << i << ", standard error " << r.alpha_standard_error[i];
 }
 
+// A fit of noise-free points (no noise floor to stop at) given a least_decrease stops
+// where a step lowers the sum of squares by less: in fewer steps than the fit run to the
+// optimum (23 against 37), every point's distance within the distance least_decrease
+// stands for of the optimum's (stage 7 sets it to (1% of the tolerance)^2).
+TEST(ChainFit, StopsWhereAStepLowersTheSumOfSquaresByLessThanLeastDecrease) {
+  const std::vector<LaSegment> truth =
+      buildChain({10, 20}, -0.4, 0.02, {{1.5, 60.0, 0.005}, {-1.0, 50.0, 0.0}, {-2.0, 70.0, -0.03}});
+  const std::vector<Vec2> points = sampleChain(truth, 120, 0.0, 0);
+  const std::vector<LaSegment> start =
+      buildChain({10.3, 19.8}, -0.38, 0.021, {{0.5, 57.0, 0.0055}, {-0.5, 53.0, 0.0}, {-1.0, 66.0, -0.027}});
+  ChainFitOptions optimum;
+  optimum.relative_decrease = 1e-13;
+  optimum.max_iterations = 400;
+  ChainFitOptions stopped = optimum;
+  const double visible = 0.01 * 0.005 * boundingBoxDiagonal(points);  // 1% of a 0.5% tolerance
+  stopped.least_decrease = visible * visible;
+  const ChainFitResult a = fitChain(start, points, {}, optimum), b = fitChain(start, points, {}, stopped);
+  ASSERT_TRUE(a.report.usable() && b.report.usable());
+  EXPECT_EQ(b.report.status, SolveStatus::kConverged);
+  EXPECT_LT(b.report.iterations, a.report.iterations);
+  const std::vector<double> da = distances(a.segments, points), db = distances(b.segments, points);
+  for (std::size_t k = 0; k < points.size(); ++k) EXPECT_NEAR(db[k], da[k], visible) << "point " << k;
+}
+
 // The result does not depend on where the points are or on their scale: moving and
 // scaling the points and the start chain moves and scales the fitted chain.
 TEST(ChainFit, InvariantUnderSimilarity) {
