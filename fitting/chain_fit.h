@@ -104,11 +104,9 @@ struct ChainFitOptions {
   /// tenth of one point's noise variance, or by less than least_decrease.
   double relative_decrease = 1e-7;
   /// The smallest decrease of the sum of squared distances worth a step (world units
-  /// squared; 0: none). Stage 7 sets it from the tolerance: a noise-free outline has no
-  /// noise floor to stop at, and its fits crawled on for dozens of steps lowering the cost
-  /// by ~1e-6 of itself each (DejaVu S: 32 + 8 + 32 steps that moved its max distance by
-  /// 0.2%). A relative stop of 1e-4 ended those but also capped fits still 50
-  /// tolerances off, which then ended further off.
+  /// squared; 0: none). Stage 7 sets it from the tolerance: noise-free points have no
+  /// noise floor to stop at, and a relative stop loose enough to end their crawl also
+  /// ends fits still far from the points.
   double least_decrease = 0.0;
   /// Iterate on at most this many points (0: all): an even subsample, the ends kept,
   /// each picked point standing in for its bin of neighbours by their centroid where the

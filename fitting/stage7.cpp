@@ -99,7 +99,8 @@ SelectionOptions stage7Selection(const FitContext& context, std::size_t parts) {
   co.max_points = kFitPoints * parts;
   co.max_iterations = kFitIterations;
   co.noise = context.noise.sigma;
-  co.least_decrease = (kNegligibleMove * context.tolerance) * (kNegligibleMove * context.tolerance);
+  const double negligible_move = kNegligibleMove * context.tolerance;
+  co.least_decrease = negligible_move * negligible_move;
   so.max_extrema = options.segmentation.max_extrema;
   so.diagonal = context.diagonal;
   so.deadline = co.deadline = context.deadline;
