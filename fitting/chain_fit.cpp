@@ -1100,15 +1100,19 @@ Eigen::VectorXd alphaStandardErrors(const Layout& layout, const ChainProblem& pr
   Eigen::MatrixXd cjac;
   problem.jacobian(model, feet, frames, jac, cjac);
   const Eigen::MatrixXd a = normalMatrix(jac);
-  const Eigen::MatrixXd z = cjac.rows() == 0 ? Eigen::MatrixXd::Identity(layout.size, layout.size)
-                                             : Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(cjac).kernel());
-  const double dof = std::max<double>(1.0, static_cast<double>(r.size()) - static_cast<double>(z.cols()));
+  const bool constrained = cjac.rows() > 0;
+  const Eigen::MatrixXd z = constrained ? Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(cjac).kernel()) : Eigen::MatrixXd();
+  const Eigen::Index free = constrained ? z.cols() : layout.size;
+  const double dof = std::max<double>(1.0, static_cast<double>(r.size()) - static_cast<double>(free));
   const double variance = r.squaredNorm() / dof;
-  const Eigen::MatrixXd reduced = z.transpose() * a * z;
-  const Eigen::MatrixXd covariance = variance * z * reduced.completeOrthogonalDecomposition().pseudoInverse() * z.transpose();
+  const Eigen::MatrixXd inverse = (constrained ? Eigen::MatrixXd(z.transpose() * a * z) : a).completeOrthogonalDecomposition().pseudoInverse();
+  // (only the alphas' variances: the diagonal entries z_a inverse z_a^T, not the whole
+  // covariance, whose two products were most of this function's time)
   Eigen::VectorXd se(static_cast<Eigen::Index>(layout.segments));
   for (std::size_t i = 0; i < layout.segments; ++i) {
-    const double v = layout.alpha[i] < 0 ? 0.0 : covariance(layout.alpha[i], layout.alpha[i]);  // (a line has none)
+    const int k = layout.alpha[i];
+    double v = 0.0;  // (a line has no alpha)
+    if (k >= 0) v = variance * (constrained ? z.row(k).dot(inverse * z.row(k).transpose()) : inverse(k, k));
     se[static_cast<Eigen::Index>(i)] = v > 0.0 ? std::sqrt(v) : INFINITY;
   }
   return se;
