@@ -1122,8 +1122,13 @@ bool sameSign(double a, double b) { return (a < 0.0) == (b < 0.0); }
 
 }  // namespace
 
-ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& all_points,
-                        const std::vector<ChainFoot>& initial_feet, const ChainFitOptions& options) {
+namespace {
+
+// fitChain, or with `errors_only` the alphas' standard errors of `initial` itself (no
+// step taken, the chain as it is).
+ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& all_points,
+                                 const std::vector<ChainFoot>& initial_feet, const ChainFitOptions& options,
+                                 bool errors_only) {
   ChainFitResult result;
   result.segments = initial;
   const std::size_t n = initial.size();
@@ -1332,6 +1337,11 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
   // (with an open chain's end rows: a pinned end point's distance is along the tangent too)
   const auto data = static_cast<Eigen::Index>(used_points.size() + used.ends());
   const double ssr_before = r.head(data).squaredNorm();
+  if (errors_only) {
+    const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
+    result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
+    return result;
+  }
   const bool admissible_before = c.size() == 0 || c.norm() <= kAdmissible;  // the start meets the constraints
 
   // A step that lowers the sum of squared distances by less than a fraction of one
@@ -1416,8 +1426,10 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
                      "kept: the fit did not bring the chain closer"};
     projectOnChain(initial, options.closed, all_points, result.feet, result.distance);
   } else {
-    const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
-    result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
+    if (options.standard_errors) {
+      const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
+      result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
+    }
     // Every point's foot: between its picked neighbours' (interpolated where they are on
     // one segment, else the nearer one's), projected afresh.
     for (std::size_t j = 0; j + 1 < pick.size(); ++j) {
@@ -1450,6 +1462,18 @@ ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector
     result.max_distance = std::max(result.max_distance, d);
   }
   return result;
+}
+
+}  // namespace
+
+ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& points,
+                        const std::vector<ChainFoot>& feet, const ChainFitOptions& options) {
+  return fitOrMeasureChain(initial, points, feet, options, false);
+}
+
+std::vector<double> alphaStandardErrorsOf(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
+                                          const std::vector<ChainFoot>& feet, const ChainFitOptions& options) {
+  return fitOrMeasureChain(chain, points, feet, options, true).alpha_standard_error;
 }
 
 void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const std::vector<Vec2>& points,

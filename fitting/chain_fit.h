@@ -129,6 +129,10 @@ struct ChainFitOptions {
   /// with a tighter joint is eased to it before the fit.
   double max_curvature = 0.0;
   double alpha_prior = 0.5, alpha_spread = 2.0;
+  /// Compute ChainFitResult::alpha_standard_error (a Jacobian and a decomposition more
+  /// per fit). The model selection's trial fits, most of which it drops, go without;
+  /// alphaStandardErrorsOf gives the kept chain's.
+  bool standard_errors = true;
   /// Per point, the weight of its residual (empty: all 1). Raising the weights of the
   /// points furthest off moves the least-squares fit towards the smallest largest
   /// distance (Lawson's iteration); the distances reported stay unweighted.
@@ -143,7 +147,8 @@ struct ChainFitResult {
   double max_distance = 0.0;
   int unknowns = 0;                 // number of fitted parameters
   /// Per segment, the standard error of its alpha (least-squares covariance at the fit):
-  /// how well the points determine it. Empty if the fit did not improve the chain.
+  /// how well the points determine it. Empty if the fit did not improve the chain, or
+  /// with ChainFitOptions::standard_errors off.
   std::vector<double> alpha_standard_error;
   bool improved = false;            // closer to the points (ssr) than the initial chain
   SolveReport report;
@@ -160,6 +165,12 @@ struct ChainFitResult {
 /// pass it through snapToJoints, which closes what is left.
 ChainFitResult fitChain(const std::vector<LaSegment>& initial, const std::vector<Vec2>& points,
                         const std::vector<ChainFoot>& feet, const ChainFitOptions& options = {});
+
+/// Per segment, the standard error of its alpha for `chain` and `points` as fitChain
+/// reports it for a fit that ends at `chain` (with `options`; none taken as a step).
+/// Empty where fitChain would refuse the chain.
+std::vector<double> alphaStandardErrorsOf(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
+                                          const std::vector<ChainFoot>& feet, const ChainFitOptions& options = {});
 
 /// Feet and distances of `points` on `segments` (in order along the chain), starting from
 /// `feet` when given (one per point). For a chain that fitChain did not make.

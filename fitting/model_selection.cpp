@@ -313,6 +313,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (a segment shorter than the tolerance is a stub: no point places it)
   ChainFitOptions base = options.fit;
   base.min_length = options.tolerance;
+  base.standard_errors = false;  // (the kept fit's, once at the end)
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
   // stopped, for `patience` times as many steps: a long chain far from its start needs
   // them, and only such a chain pays for them. A trial simplification that has to end
@@ -661,6 +662,11 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   }
   if (options.refine) simplify(false);
   if (options.max_extrema >= 0) enforceCap();
+  if (options.fit.standard_errors && out.fit.improved) {
+    ChainFitOptions o = base;
+    o.corners = out.corners;
+    out.fit.alpha_standard_error = alphaStandardErrorsOf(out.fit.segments, points, out.fit.feet, o);
+  }
   return out;
 }
 

@@ -121,6 +121,37 @@ TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
         << "segment " << i << ", standard error " << r.alpha_standard_error[i];
 }
 
+// The model selection fits without standard errors (its trial fits are mostly dropped)
+// and asks for the kept chain's alone: the same chain to the bit, and the standard
+// errors of the chain as it stands are the fit's own (to 1e-6: the chain's unknowns are
+// read back from its segments).
+TEST(ChainFit, StandardErrorsOfTheFittedChainAreTheFitsOwn) {
+  const std::vector<LaSegment> truth =
+      buildChain({10, 20}, -0.4, 0.02, {{1.5, 60.0, 0.005}, {-1.0, 50.0, 0.0}, {-2.0, 70.0, -0.03}});
+  const double sigma = 1e-3 * boundingBoxDiagonal(sampleChain(truth, 50, 0.0, 0));
+  const std::vector<Vec2> points = sampleChain(truth, 120, sigma, 42);
+  const std::vector<LaSegment> start =
+      buildChain({10.3, 19.8}, -0.38, 0.021, {{0.5, 57.0, 0.0055}, {-0.5, 53.0, 0.0}, {-1.0, 66.0, -0.027}});
+  const ChainFitResult with = fitChain(start, points, {});
+  ChainFitOptions without_errors;
+  without_errors.standard_errors = false;
+  const ChainFitResult without = fitChain(start, points, {}, without_errors);
+  ASSERT_TRUE(with.improved);
+  ASSERT_EQ(with.alpha_standard_error.size(), 3u);
+  EXPECT_TRUE(without.alpha_standard_error.empty());
+  ASSERT_EQ(without.segments.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(without.segments[i].alpha(), with.segments[i].alpha()) << "segment " << i;
+    EXPECT_EQ(without.segments[i].length(), with.segments[i].length()) << "segment " << i;
+  }
+  const std::vector<double> again = alphaStandardErrorsOf(with.segments, points, with.feet);
+  ASSERT_EQ(again.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(std::isfinite(with.alpha_standard_error[i]));
+    EXPECT_NEAR(again[i], with.alpha_standard_error[i], 1e-6 * with.alpha_standard_error[i]) << "segment " << i;
+  }
+}
+
 // A fit of noise-free points (no noise floor to stop at) given a least_decrease stops
 // where a step lowers the sum of squares by less: in fewer steps than the fit run to the
 // optimum (23 against 37), every point's distance within the distance least_decrease
