@@ -155,22 +155,47 @@ class LawEvaluator {
     }
     return T(0.0);
   }
+  // theta(u) (as theta() to the bit: the same expressions) and kappa(u), sharing their
+  // logarithm: one transcendental call fewer per panel end.
+  void thetaAndKappa(double u, T& theta_u, T& kappa_u) const {
+    using std::exp;
+    using std::expm1;
+    switch (zero_) {
+      case ZeroEnd::kNone: {
+        const T g = log1pOverX(alpha_ * big_r_ * u);
+        theta_u = turning_ref_ * u * g * expm1OverX((alpha_ - 1.0) * big_r_ * u * g);
+        kappa_u = kappa_ref_ * exp(-big_r_ * u * g);
+        return;
+      }
+      case ZeroEnd::kEnd: {
+        if (u >= 1.0) {
+          theta_u = turning_ref_ / e_, kappa_u = T(0.0);
+          return;
+        }
+        const double l = std::log1p(-u);
+        theta_u = -turning_ref_ * expm1(e_ * l) / e_;
+        kappa_u = kappa_ref_ * exp(-l / alpha_);
+        return;
+      }
+      case ZeroEnd::kStart: {
+        if (u <= 0.0) {
+          theta_u = kappa_u = T(0.0);
+          return;
+        }
+        const double l = std::log(u);
+        theta_u = turning_ref_ * exp(e_ * l) / e_;
+        kappa_u = kappa_ref_ * exp(-l / alpha_);
+        return;
+      }
+      case ZeroEnd::kBoth: theta_u = kappa_u = T(0.0); return;
+    }
+  }
   // dkappa/du at u, given kappa there (not at a zero end: its slope may be infinite).
   T kappaSlope(double u, const T& kappa) const {
     switch (zero_) {
       case ZeroEnd::kNone: return -big_r_ * kappa / (1.0 + alpha_ * big_r_ * u);  // kappa ~ (1 + alpha R u)^(-1/alpha)
       case ZeroEnd::kEnd: return kappa / (alpha_ * (1.0 - u));                    // kappa ~ (1 - u)^(-1/alpha)
       case ZeroEnd::kStart: return -kappa / (alpha_ * u);                         // kappa ~ u^(-1/alpha)
-      case ZeroEnd::kBoth: return T(0.0);
-    }
-    return T(0.0);
-  }
-  T kappa(double u) const {
-    using std::exp;
-    switch (zero_) {
-      case ZeroEnd::kNone: return kappa_ref_ * exp(-big_r_ * u * log1pOverX(alpha_ * big_r_ * u));
-      case ZeroEnd::kEnd: return u >= 1.0 ? T(0.0) : kappa_ref_ * exp(-std::log1p(-u) / alpha_);
-      case ZeroEnd::kStart: return u <= 0.0 ? T(0.0) : kappa_ref_ * exp(-std::log(u) / alpha_);
       case ZeroEnd::kBoth: return T(0.0);
     }
     return T(0.0);
@@ -355,7 +380,6 @@ void buildPanels(const Law& law, Panels<T>& p) {
   p.length = length;
   const LawEvaluator<T> evaluator(alpha, y0, y1, length, law.sign, law.zero);
   auto theta = [&](double u) { return evaluator.theta(u); };
-  auto kappa = [&](double u) { return evaluator.kappa(u); };
   using std::abs;
   const auto& rule = gaussLegendre<kPanelNodes>();
   const std::size_t n = p.grid.size();
@@ -367,8 +391,7 @@ void buildPanels(const Law& law, Panels<T>& p) {
     return (law.zero == ZeroEnd::kStart && k == 0) || (law.zero == ZeroEnd::kEnd && k + 1 == n);
   };
   for (std::size_t k = 0; k < n; ++k) {
-    p.theta[k] = theta(p.grid[k]);
-    p.kappa[k] = kappa(p.grid[k]);
+    evaluator.thetaAndKappa(p.grid[k], p.theta[k], p.kappa[k]);
     sinCos(p.theta[k], p.s[k], p.c[k]);
     if (!atZeroEnd(k)) slope[k] = evaluator.kappaSlope(p.grid[k], p.kappa[k]);
     if (k == 0) continue;
