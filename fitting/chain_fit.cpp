@@ -1360,9 +1360,13 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   // (with an open chain's end rows: a pinned end point's distance is along the tangent too)
   const auto data = static_cast<Eigen::Index>(used_points.size() + used.ends());
   const double ssr_before = r.head(data).squaredNorm();
-  if (errors_only) {
+  // (of the model at hand, with its feet, frames and residuals)
+  auto measureStandardErrors = [&] {
     const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
     result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
+  };
+  if (errors_only) {
+    measureStandardErrors();
     return result;
   }
   const bool admissible_before = c.size() == 0 || c.norm() <= kAdmissible;  // the start meets the constraints
@@ -1449,10 +1453,7 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
                      "kept: the fit did not bring the chain closer"};
     projectOnChain(initial, options.closed, all_points, result.feet, result.distance);
   } else {
-    if (options.standard_errors) {
-      const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
-      result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
-    }
+    if (options.standard_errors) measureStandardErrors();
     // Every point's foot: between its picked neighbours' (interpolated where they are on
     // one segment, else the nearer one's), projected afresh.
     for (std::size_t j = 0; j + 1 < pick.size(); ++j) {

@@ -94,30 +94,35 @@ std::pair<ChainFitResult, ChainFitResult> fitAgainstTruth(const std::vector<LaSe
   return {fitChain(start, points, {}, options), fitChain(truth, points, {}, unfitted)};
 }
 
-// Three segments with an inflection joint, noise of 0.1% of the size (seeded), started
-// from wrong alphas (off by 0.5 to 1) and a shifted start. The fitted chain is G2 by
-// construction, keeps the inflection at zero curvature, fits the points at least as
-// well as the truth does (the optimum of the noisy data), and recovers every alpha
-// within issue 3's 0.3, or within three standard errors where the points determine it
-// less well than that (at this noise, alpha -0.5 instead of -1 on the 50-unit middle
-// segment moves the curve by less than the noise).
-TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
-  const std::vector<LaSegment> truth =
+// Three segments with an inflection joint, noise of 0.1% of the size (seeded), and a
+// start from wrong alphas (off by 0.5 to 1) and a shifted start point.
+struct NoisyInflectionChain {
+  std::vector<LaSegment> truth =
       buildChain({10, 20}, -0.4, 0.02, {{1.5, 60.0, 0.005}, {-1.0, 50.0, 0.0}, {-2.0, 70.0, -0.03}});
-  const double sigma = 1e-3 * boundingBoxDiagonal(sampleChain(truth, 50, 0.0, 0));
-  const std::vector<Vec2> points = sampleChain(truth, 120, sigma, 42);
-  const std::vector<LaSegment> start =
+  double sigma = 1e-3 * boundingBoxDiagonal(sampleChain(truth, 50, 0.0, 0));
+  std::vector<Vec2> points = sampleChain(truth, 120, sigma, 42);
+  std::vector<LaSegment> start =
       buildChain({10.3, 19.8}, -0.38, 0.021, {{0.5, 57.0, 0.0055}, {-0.5, 53.0, 0.0}, {-1.0, 66.0, -0.027}});
-  const auto [r, at_truth] = fitAgainstTruth(start, truth, points);  // (the start is far: each alpha is off by 0.5 to 1)
+};
+
+// The noisy inflection chain, fitted from its start: G2 by construction, the inflection
+// kept at zero curvature, the points fitted at least as well as the truth does (the
+// optimum of the noisy data), and every alpha recovered within issue 3's 0.3, or within
+// three standard errors where the points determine it less well than that (at this
+// noise, alpha -0.5 instead of -1 on the 50-unit middle segment moves the curve by less
+// than the noise).
+TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
+  const NoisyInflectionChain c;
+  const auto [r, at_truth] = fitAgainstTruth(c.start, c.truth, c.points);  // (the start is far: each alpha is off by 0.5 to 1)
   ASSERT_TRUE(r.report.usable()) << r.report.message;
   ASSERT_EQ(r.segments.size(), 3u);
   expectG2(r.segments);
   EXPECT_EQ(r.segments[1].kappaEnd(), 0.0) << "the inflection joint keeps zero curvature";
-  EXPECT_LT(r.ssr, 1.001 * at_truth.ssr) << "sigma " << sigma;
-  EXPECT_LT(maxDistance(r.segments, points), 5.0 * sigma);
+  EXPECT_LT(r.ssr, 1.001 * at_truth.ssr) << "sigma " << c.sigma;
+  EXPECT_LT(maxDistance(r.segments, c.points), 5.0 * c.sigma);
   ASSERT_EQ(r.alpha_standard_error.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i)
-    EXPECT_NEAR(r.segments[i].alpha(), truth[i].alpha(), std::max(0.3, 3.0 * r.alpha_standard_error[i]))
+    EXPECT_NEAR(r.segments[i].alpha(), c.truth[i].alpha(), std::max(0.3, 3.0 * r.alpha_standard_error[i]))
         << "segment " << i << ", standard error " << r.alpha_standard_error[i];
 }
 
@@ -126,16 +131,11 @@ TEST(ChainFit, FitsANoisyChainWithAnInflectionBack) {
 // errors of the chain as it stands are the fit's own (to 1e-6: the chain's unknowns are
 // read back from its segments).
 TEST(ChainFit, StandardErrorsOfTheFittedChainAreTheFitsOwn) {
-  const std::vector<LaSegment> truth =
-      buildChain({10, 20}, -0.4, 0.02, {{1.5, 60.0, 0.005}, {-1.0, 50.0, 0.0}, {-2.0, 70.0, -0.03}});
-  const double sigma = 1e-3 * boundingBoxDiagonal(sampleChain(truth, 50, 0.0, 0));
-  const std::vector<Vec2> points = sampleChain(truth, 120, sigma, 42);
-  const std::vector<LaSegment> start =
-      buildChain({10.3, 19.8}, -0.38, 0.021, {{0.5, 57.0, 0.0055}, {-0.5, 53.0, 0.0}, {-1.0, 66.0, -0.027}});
-  const ChainFitResult with = fitChain(start, points, {});
+  const NoisyInflectionChain c;
+  const ChainFitResult with = fitChain(c.start, c.points, {});
   ChainFitOptions without_errors;
   without_errors.standard_errors = false;
-  const ChainFitResult without = fitChain(start, points, {}, without_errors);
+  const ChainFitResult without = fitChain(c.start, c.points, {}, without_errors);
   ASSERT_TRUE(with.improved);
   ASSERT_EQ(with.alpha_standard_error.size(), 3u);
   EXPECT_TRUE(without.alpha_standard_error.empty());
@@ -144,7 +144,7 @@ TEST(ChainFit, StandardErrorsOfTheFittedChainAreTheFitsOwn) {
     EXPECT_EQ(without.segments[i].alpha(), with.segments[i].alpha()) << "segment " << i;
     EXPECT_EQ(without.segments[i].length(), with.segments[i].length()) << "segment " << i;
   }
-  const std::vector<double> again = alphaStandardErrorsOf(with.segments, points, with.feet);
+  const std::vector<double> again = alphaStandardErrorsOf(with.segments, c.points, with.feet);
   ASSERT_EQ(again.size(), 3u);
   for (std::size_t i = 0; i < 3; ++i) {
     ASSERT_TRUE(std::isfinite(with.alpha_standard_error[i]));
