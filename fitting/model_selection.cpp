@@ -313,7 +313,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (a segment shorter than the tolerance is a stub: no point places it)
   ChainFitOptions base = options.fit;
   base.min_length = options.tolerance;
-  base.standard_errors = false;  // (the kept fit's, once at the end)
+  base.standard_errors = false;  // (the first fit's, or the kept fit's at the end)
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
   // stopped, for `patience` times as many steps: a long chain far from its start needs
   // them, and only such a chain pays for them. A trial simplification that has to end
@@ -321,9 +321,10 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (the trials that fail so paid for most of stage 7's time).
   // (an edit renumbers the corners' joints: each fit names the corners of its chain)
   auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet,
-                 const std::vector<ChainCorner>& corners, double keep_within = INFINITY) {
+                 const std::vector<ChainCorner>& corners, double keep_within = INFINITY, bool standard_errors = false) {
     ChainFitOptions o = base;
     o.corners = corners;
+    o.standard_errors = standard_errors;
     ChainFitResult r = fitChain(start, points, start_feet, o);
     if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance ||
         r.max_distance > kHopelessTrial * keep_within)
@@ -337,7 +338,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   };
   SelectionResult out;
   out.corners = options.fit.corners;
-  out.fit = fit(chain, feet, out.corners);
+  out.fit = fit(chain, feet, out.corners, INFINITY, options.fit.standard_errors);  // (often the one kept)
   // (a start the chain fit refuses has no feet to edit by: nothing to select from; an edit
   // of it crashed the window screen on a noisy logarithmic spiral of four turns)
   if (out.fit.report.status == SolveStatus::kBadInput) return out;
@@ -662,7 +663,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   }
   if (options.refine) simplify(false);
   if (options.max_extrema >= 0) enforceCap();
-  if (options.fit.standard_errors && out.fit.improved) {
+  if (options.fit.standard_errors && out.fit.improved && out.fit.alpha_standard_error.empty()) {
     ChainFitOptions o = base;
     o.corners = out.corners;
     out.fit.alpha_standard_error = alphaStandardErrorsOf(out.fit.segments, points, out.fit.feet, o);
