@@ -1125,8 +1125,8 @@ Eigen::VectorXd alphaStandardErrors(const Layout& layout, const ChainProblem& pr
   const Eigen::MatrixXd a = normalMatrix(jac);
   const bool constrained = cjac.rows() > 0;
   const Eigen::MatrixXd z = constrained ? Eigen::MatrixXd(Eigen::FullPivLU<Eigen::MatrixXd>(cjac).kernel()) : Eigen::MatrixXd();
-  const Eigen::Index free = constrained ? z.cols() : layout.size;
-  const double dof = std::max<double>(1.0, static_cast<double>(r.size()) - static_cast<double>(free));
+  const Eigen::Index free_unknowns = constrained ? z.cols() : layout.size;
+  const double dof = std::max<double>(1.0, static_cast<double>(r.size()) - static_cast<double>(free_unknowns));
   const double variance = r.squaredNorm() / dof;
   const Eigen::MatrixXd inverse = (constrained ? Eigen::MatrixXd(z.transpose() * a * z) : a).completeOrthogonalDecomposition().pseudoInverse();
   // (only the alphas' variances: the diagonal entries z_a inverse z_a^T, not the whole

@@ -130,8 +130,8 @@ struct ChainFitOptions {
   double max_curvature = 0.0;
   double alpha_prior = 0.5, alpha_spread = 2.0;
   /// Compute ChainFitResult::alpha_standard_error (a Jacobian and a decomposition more
-  /// per fit). The model selection's trial fits, most of which it drops, go without;
-  /// alphaStandardErrorsOf gives the kept chain's.
+  /// per fit). The model selection's trial fits, most of which it drops, go without; it
+  /// measures a kept edit's with alphaStandardErrorsOf.
   bool standard_errors = true;
   /// Per point, the weight of its residual (empty: all 1). Raising the weights of the
   /// points furthest off moves the least-squares fit towards the smallest largest

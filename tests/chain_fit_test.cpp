@@ -157,11 +157,9 @@ TEST(ChainFit, StandardErrorsOfTheFittedChainAreTheFitsOwn) {
 // optimum (23 against 37), every point's distance within the distance least_decrease
 // stands for of the optimum's (stage 7 sets it to (1% of the tolerance)^2).
 TEST(ChainFit, StopsWhereAStepLowersTheSumOfSquaresByLessThanLeastDecrease) {
-  const std::vector<LaSegment> truth =
-      buildChain({10, 20}, -0.4, 0.02, {{1.5, 60.0, 0.005}, {-1.0, 50.0, 0.0}, {-2.0, 70.0, -0.03}});
-  const std::vector<Vec2> points = sampleChain(truth, 120, 0.0, 0);
-  const std::vector<LaSegment> start =
-      buildChain({10.3, 19.8}, -0.38, 0.021, {{0.5, 57.0, 0.0055}, {-0.5, 53.0, 0.0}, {-1.0, 66.0, -0.027}});
+  const NoisyInflectionChain c;  // (its truth and start; the points without noise)
+  const std::vector<Vec2> points = sampleChain(c.truth, 120, 0.0, 0);
+  const std::vector<LaSegment>& start = c.start;
   ChainFitOptions optimum;
   optimum.relative_decrease = 1e-13;
   optimum.max_iterations = 400;
