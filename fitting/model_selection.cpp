@@ -43,10 +43,10 @@ constexpr double kMarkedGain = 0.99;
 // A trial simplification whose fit stops at its iteration limit further than this many
 // times the distance it must keep is not given the patience of longer fits.
 constexpr double kHopelessTrial = 2.0;
-// ... and one whose segments near the edit, fitted as a window between the segments
-// beside them, stay further than this many times that distance is not fitted whole (at 2,
-// with the window's ends free, a drawn star's model selection took another path and
-// missed its tolerance 1.8 times: a window's fit stops at its own iteration limit).
+// ... and one whose segments near the edit, fitted alone with their ends free, stay
+// further than this many times that distance is not fitted whole (at 2 a drawn star's
+// model selection took another path and missed its tolerance 1.8 times: a window's
+// fit stops at its own iteration limit, short of the relaxation's optimum).
 constexpr double kHopelessWindow = 4.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
@@ -391,28 +391,18 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     return true;
   };
   // A trial edit's segments near `center` (two on either side, in the edited chain),
-  // fitted as a window (ChainFitOptions::window) to the points whose feet are on them:
-  // it meets the segments on either side where they were before the edit. The whole
-  // chain's fit then starts from the edit with that window, near its optimum, instead
-  // of from the crude edit. Where even the window stays further than kHopelessWindow
-  // times `keep_within` from its points, the whole chain's fit would not keep the edit,
-  // and is not run (most trial simplifications fail, and a window costs a fraction of
-  // the chain). Inside the chain only, not across a corner, nor where the window is most
-  // of the chain; elsewhere `start` is empty.
-  struct Nearby {
-    bool hopeless = false;
-    std::vector<LaSegment> start;  // the edited chain with the window refitted
-    std::vector<ChainFoot> feet;   // on it
-  };
-  auto refitNearby = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, std::size_t center, double keep_within) {
-    Nearby nearby;
-    const std::size_t n = e.pieces.size(), old_n = out.fit.segments.size();
+  // fitted alone to the points whose feet are on them, their ends free: a relaxation of
+  // the whole chain's fit there. Where even it stays further than kHopelessWindow times
+  // `keep_within` from those points, the whole chain's fit would not keep the edit, and
+  // is not run (most trial simplifications fail, and a window costs a fraction of the
+  // chain). Not across a corner, nor where the window is most of the chain.
+  auto hopelessNearby = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, std::size_t center, double keep_within) {
+    const std::size_t n = e.pieces.size();
     const std::size_t lo = center >= 2 ? center - 2 : 0, hi = std::min(n, center + 2);
-    if (lo >= hi || hi >= n || 2 * (hi - lo) > n) return nearby;
-    for (std::size_t i = lo; i <= hi; ++i)
-      if ((i > lo || i == 0) && e.pieces[i].atCorner()) return nearby;
-    // (the segments from hi on are the chain's from hi + old_n - n on, unedited)
-    const auto unedited = out.fit.segments.begin() + static_cast<std::ptrdiff_t>(hi + old_n - n);
+    if (lo >= hi || 2 * (hi - lo) > n) return false;
+    for (std::size_t i = lo; i < hi; ++i)
+      if ((i > lo || i == 0) && e.pieces[i].atCorner()) return false;
+    if (hi < n && e.pieces[hi].atCorner()) return false;
     std::vector<LaSegment> window(rebuilt.begin() + static_cast<std::ptrdiff_t>(lo), rebuilt.begin() + static_cast<std::ptrdiff_t>(hi));
     std::vector<Vec2> near;
     std::vector<ChainFoot> near_feet;
@@ -424,22 +414,9 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     ChainFitOptions o = base;
     o.corners.clear();
     o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
-    o.window = true;
-    o.window_end = {unedited->start(), unedited->theta0()};
     o.weights.clear();
     const ChainFitResult r = fitChain(window, near, near_feet, o);
-    if (r.report.status == SolveStatus::kBadInput || !r.improved) return nearby;
-    nearby.hopeless = r.max_distance > kHopelessWindow * keep_within;
-    nearby.start.assign(rebuilt.begin(), rebuilt.begin() + static_cast<std::ptrdiff_t>(lo));
-    nearby.start.insert(nearby.start.end(), r.segments.begin(), r.segments.end());
-    nearby.start.insert(nearby.start.end(), unedited, out.fit.segments.end());
-    nearby.feet = e.feet;
-    for (std::size_t k = 0, j = 0; k < points.size(); ++k)
-      if (e.feet[k].segment >= lo && e.feet[k].segment < hi) {
-        nearby.feet[k] = {r.feet[j].segment + lo, r.feet[j].u};
-        ++j;
-      }
-    return nearby;
+    return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * keep_within;
   };
   // An edit is kept if the refitted chain is within the tolerance (or no further outside
   // it than before) and the points do not object (the F-test above); a merge at a weak
@@ -523,17 +500,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         not_kept.push_back(tried);  // (until it is kept, below)
         if (!e) continue;
         const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
-        if (!rebuilt) continue;
-        const Nearby nearby = refitNearby(*e, *rebuilt, c.index, keep_within);
-        if (nearby.hopeless) continue;
-        std::optional<Attempt> r;
-        if (nearby.start.empty()) {
-          r = attemptRebuilt(*e, *rebuilt, keep_within);
-        } else {
-          Edit from_window = *e;
-          from_window.feet = nearby.feet;
-          r = attemptRebuilt(from_window, nearby.start, keep_within);
-        }
+        if (!rebuilt || hopelessNearby(*e, *rebuilt, c.index, keep_within)) continue;
+        auto r = attemptRebuilt(*e, *rebuilt, keep_within);
         // (a line only within the tolerance: bent again, it is a crude start for a split)
         if (!r || !keep(r->fit, c.extremum) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         not_kept.pop_back();
