@@ -490,14 +490,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
         if (edits >= options.max_edits || outOfTime()) break;
-        const std::optional<Edit> e = c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
-                                      : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
-                                                                : straighten(segs, out.fit.feet, out.corners, c.index, c.count);
-        const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         ++edits;
         const Tried tried{c.kind, c.index, c.count};
         if (std::find(not_kept.begin(), not_kept.end(), tried) != not_kept.end()) continue;
         not_kept.push_back(tried);  // (until it is kept, below)
+        const std::optional<Edit> e = c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
+                                      : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
+                                                                : straighten(segs, out.fit.feet, out.corners, c.index, c.count);
+        const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         if (!e) continue;
         const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
         if (!rebuilt || hopelessNearby(*e, *rebuilt, c.index, keep_within)) continue;
