@@ -603,13 +603,23 @@ struct Layout {
   Vec2 start_point = Vec2::Zero();
   Vec2 end_point = Vec2::Zero();  // where a fixed end stays
   double total_turning = 0.0;     // closed: the end tangent is the start's plus this
+  // A window (ChainFitOptions::window): fix_start and fix_end, its end tangent at
+  // end_angle (unwrapped from the start's) and these unknowns held at their values (the
+  // start tangent, the end curvatures) by equality constraints.
+  bool window = false;
+  double end_angle = 0.0;
+  std::vector<std::pair<int, double>> held;
   double prior_alpha = 0.0, prior_weight = 0.0;  // residual prior_weight (alpha - prior_alpha) per segment
   double min_length = 0.0, length_weight = 0.0;  // residual length_weight log(min_length / length), if positive
   int size = 0;
 
   // closed with a corner at its seam: the chain returns to its start in position only
   bool seamCorner() const { return closed && corner[0]; }
-  int constraints() const { return closed ? (seamCorner() ? 2 : 3) : fix_end ? 2 : 0; }
+  int constraints() const {
+    return closed ? (seamCorner() ? 2 : 3) : window ? 3 + static_cast<int>(held.size()) : fix_end ? 2 : 0;
+  }
+  // The first and last points sit at the chain's ends (an open chain that is no window).
+  bool pointsAtEnds() const { return !closed && !window; }
   Law law(const Eigen::VectorXd& x, std::size_t i) const {
     Law l;
     l.zero = zero[i];
@@ -644,6 +654,7 @@ struct ChainModel : ChainGeometry {
   std::vector<PoseJacobian> pose_jacobian;
   std::vector<std::array<int, 4>> columns;     // global unknown of each local one (-1: none)
   std::vector<std::array<double, 4>> factors;  // d local / d global
+  std::vector<double> held;  // a window's held unknowns (Layout::held), as x has them
 };
 
 // The derivatives of a model built at x (buildModel without them): the Jet panels and
@@ -700,6 +711,8 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
   m.angle.resize(n + 1);
   m.start[0] = layout.fix_start ? layout.start_point : Vec2(x[layout.start], x[layout.start + 1]);
   m.angle[0] = x[layout.theta];
+  m.held.clear();
+  for (const auto& [unknown, value] : layout.held) m.held.push_back(x[unknown]);
   m.total_length = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const Law law = layout.law(x, i);
@@ -723,6 +736,12 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
 Eigen::MatrixXd constraintJacobian(const Layout& layout, const ChainModel& m) {
   const std::size_t n = layout.segments;
   if (layout.closed) return (m.pose_jacobian[n] - m.pose_jacobian[0]).topRows(layout.constraints());
+  if (layout.window) {
+    Eigen::MatrixXd cj = Eigen::MatrixXd::Zero(layout.constraints(), layout.size);
+    cj.topRows(3) = m.pose_jacobian[n];
+    for (std::size_t k = 0; k < layout.held.size(); ++k) cj(3 + static_cast<Eigen::Index>(k), layout.held[k].first) = 1.0;
+    return cj;
+  }
   if (layout.fix_end) return m.pose_jacobian[n].topRows(2);
   return Eigen::MatrixXd::Zero(0, layout.size);
 }
@@ -757,10 +776,10 @@ class ChainProblem {
                const std::vector<FootRange>& ranges)
       : layout_(layout), points_(points), weights_(weights), ranges_(ranges) {}
 
-  // One row per point (its tangent distance), for an open chain the tangential
-  // components of its two end points (pinned to the chain's ends), and two per segment:
+  // One row per point (its tangent distance), for an open chain (not a window) the
+  // tangential components of its two end points (pinned to the chain's ends), and two per segment:
   // the prior on its alpha, and the penalty on a length below min_length (0 above it).
-  std::size_t ends() const { return layout_.closed ? 0 : 2; }
+  std::size_t ends() const { return layout_.pointsAtEnds() ? 2 : 0; }
   std::size_t rows() const { return points_.size() + ends() + 2 * layout_.segments; }
 
   // Projects the feet on the model (an open chain's end points stay at its ends) and
@@ -769,7 +788,7 @@ class ChainProblem {
                 Eigen::VectorXd& c, bool project = true) const {
     const std::size_t n_points = points_.size();
     frames.resize(n_points);
-    if (!layout_.closed) {
+    if (layout_.pointsAtEnds()) {
       feet.front() = {0, 0.0};
       feet.back() = {layout_.segments - 1, 1.0};
     }
@@ -777,13 +796,13 @@ class ChainProblem {
       const FootRange* range = ranges_.empty() ? nullptr : &ranges_[k];
       const bool held = range && range->held != SIZE_MAX;
       if (held) feet[k] = {range->held, 0.0};
-      const bool pinned = (!layout_.closed && (k == 0 || k + 1 == n_points)) || held;
+      const bool pinned = (layout_.pointsAtEnds() && (k == 0 || k + 1 == n_points)) || held;
       frames[k] = pinned || !project ? m.frame(feet[k]) : projectFoot(m, points_[k], feet[k], kFootSteps, range);
     }
     r.resize(static_cast<Eigen::Index>(rows()));
     for (std::size_t k = 0; k < n_points; ++k)
       r[static_cast<Eigen::Index>(k)] = weights_[k] * direction(m, feet[k], frames[k], k).dot(frames[k].point - points_[k]);
-    if (!layout_.closed) {
+    if (layout_.pointsAtEnds()) {
       const std::size_t last = n_points - 1;
       r[static_cast<Eigen::Index>(n_points)] =
           layout_.fix_start ? 0.0 : weights_[0] * frames[0].tangent.dot(frames[0].point - points_[0]);
@@ -802,6 +821,11 @@ class ChainProblem {
       c << m.start[n] - m.start[0];
     } else if (layout_.closed) {
       c << m.start[n] - m.start[0], m.angle[n] - m.angle[0] - layout_.total_turning;
+    } else if (layout_.window) {
+      c.head(2) = m.start[n] - layout_.end_point;
+      c[2] = m.angle[n] - layout_.end_angle;
+      for (std::size_t k = 0; k < layout_.held.size(); ++k)
+        c[3 + static_cast<Eigen::Index>(k)] = m.held[k] - layout_.held[k].second;
     } else if (layout_.fix_end) {
       c << m.start[n] - layout_.end_point;
     }
@@ -830,7 +854,7 @@ class ChainProblem {
       }
     };
     for (std::size_t k = 0; k < n_points; ++k) add(static_cast<Eigen::Index>(k), k, direction(m, feet[k], frames[k], k));
-    if (!layout_.closed) {
+    if (layout_.pointsAtEnds()) {
       const std::size_t last = n_points - 1;
       if (!layout_.fix_start) add(static_cast<Eigen::Index>(n_points), 0, frames[0].tangent);
       if (!layout_.fix_end) add(static_cast<Eigen::Index>(n_points + 1), last, frames[last].tangent);
@@ -1162,6 +1186,8 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   if (n == 0 || all_points.size() < 3) return refuse("no chain or too few points");
   if (!initial_feet.empty() && initial_feet.size() != all_points.size()) return refuse("feet and points differ in count");
   if (!options.weights.empty() && options.weights.size() != all_points.size()) return refuse("weights and points differ in count");
+  if (options.window && (options.closed || options.fix_start || options.fix_end || !options.corners.empty()))
+    return refuse("a window is open, without corners, and its ends are its own");
 
   // Normalized frame: the chain's start at the origin, unit bounding-box diagonal.
   const Vec2 origin = initial.front().start();
@@ -1174,10 +1200,12 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   Layout layout;
   layout.segments = n;
   layout.closed = options.closed;
-  layout.fix_start = options.fix_start && !options.closed;
-  layout.fix_end = options.fix_end && !options.closed;
-  layout.start_point = points.front();  // a fixed end is the first / last point (a corner)
-  layout.end_point = points.back();
+  layout.fix_start = (options.fix_start || options.window) && !options.closed;
+  layout.fix_end = (options.fix_end || options.window) && !options.closed;
+  layout.window = options.window;
+  // (a fixed end is the first / last point, a corner; a window's ends are its own)
+  layout.start_point = options.window ? Vec2::Zero() : points.front();
+  layout.end_point = options.window ? Vec2((options.window_end.point - origin) / scale) : points.back();
   std::vector<double> x0, lower, upper, caps;
   auto add = [&](double value, double lo, double hi, double cap) {
     x0.push_back(value), lower.push_back(lo), upper.push_back(hi), caps.push_back(cap);
@@ -1287,6 +1315,18 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     }
   }
   layout.total_turning = 2.0 * std::numbers::pi * std::round(turning / (2.0 * std::numbers::pi));
+  if (options.window) {
+    // (the end tangent unwrapped: the initial chain's turning, and the turn onto window_end)
+    const double initial_end = initial.back().theta(initial.back().length());
+    layout.end_angle = x0[layout.theta] + turning + std::remainder(options.window_end.theta - initial_end, 2.0 * std::numbers::pi);
+    layout.held.emplace_back(layout.theta, x0[layout.theta]);
+    for (const auto& [unknown, value] : {std::pair{layout.kappa_start.front(), kappa[at_start.front()]},
+                                         std::pair{layout.kappa_end.back(), kappa[at_end.back()]}}) {
+      if (unknown < 0) continue;  // (a zero end stays zero)
+      if (x0[unknown] != value) return refuse("a window's end curvature is beyond the bound on curvature");
+      layout.held.emplace_back(unknown, value);
+    }
+  }
   layout.size = static_cast<int>(x0.size());
   layout.prior_alpha = options.alpha_prior;
   layout.prior_weight = options.alpha_spread > 0.0 ? options.noise / scale / options.alpha_spread : 0.0;
@@ -1352,7 +1392,7 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     used_feet.push_back(foot);
     if (range) used_ranges.push_back(*range);
   }
-  refineOutlyingFeet(model, used_points, used_feet, used_distance, !options.closed, used_ranges);
+  refineOutlyingFeet(model, used_points, used_feet, used_distance, layout.pointsAtEnds(), used_ranges);
   const ChainProblem used(layout, used_points, used_weights, used_ranges);
   std::vector<FootFrame> frames;
   Eigen::VectorXd r, c;
@@ -1415,6 +1455,13 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
       for (int turn : layout.corner_turn)
         if (turn >= 0) turning += xx[turn];
       value << end - (chain.front().start() - origin) / scale, turning - layout.total_turning;
+    } else if (layout.window) {
+      double turning = 0.0;
+      for (const LaSegment& seg : chain) turning += seg.turning();
+      value.head(2) = end - layout.end_point;
+      value[2] = xx[layout.theta] + turning - layout.end_angle;
+      for (std::size_t k = 0; k < layout.held.size(); ++k)
+        value[3 + static_cast<Eigen::Index>(k)] = xx[layout.held[k].first] - layout.held[k].second;
     } else if (layout.fix_end) {
       value << end - layout.end_point;
     }
@@ -1468,11 +1515,11 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     result.distance.resize(m);
     for (std::size_t k = 0; k < m; ++k) {
       const FootRange* range = ranges.empty() ? nullptr : &ranges[k];
-      const bool pinned = !options.closed && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
+      const bool pinned = layout.pointsAtEnds() && (k == 0 || k + 1 == m);  // an open chain's ends stay at the points'
       const FootFrame f = pinned ? model.frame(feet[k]) : projectFoot(model, points[k], feet[k], kFinalFootSteps, range);
       result.distance[k] = (f.point - points[k]).norm();
     }
-    refineOutlyingFeet(model, points, feet, result.distance, !options.closed, ranges);
+    refineOutlyingFeet(model, points, feet, result.distance, layout.pointsAtEnds(), ranges);
     for (double& d : result.distance) d *= scale;
     result.segments = std::move(fitted);
     result.feet = std::move(feet);

@@ -27,10 +27,11 @@
 // the closest-point condition, across joints) at every evaluation, so the cost is the
 // sum of squared distances. An open chain's free ends are pinned to the first / last
 // point. A weak prior on each alpha (ChainFitOptions::noise) keeps alphas the points do
-// not determine from wandering. A fixed end (a part that ends at a corner) and a closed
-// chain's closure (end point and tangent back at the start) are equality constraints,
-// met on the exact chain (LaSegment positions) to rounding where a few Newton steps get
-// there; snapToJoints (below) closes what is left.
+// not determine from wandering. A fixed end (a part that ends at a corner), a closed
+// chain's closure (end point and tangent back at the start) and a window's ends (the
+// pose and curvature where the segments beside it start and end, ChainFitOptions::window)
+// are equality constraints, met on the exact chain (LaSegment positions) to rounding
+// where a few Newton steps get there; snapToJoints (below) closes what is left.
 //
 // Corners (ChainFitOptions::corners, for a stroke drawn with sharp corners, fitted as one
 // chain so that the fit places the corners): at a corner joint the tangent turns by an
@@ -87,6 +88,16 @@ struct ChainFitOptions {
   bool closed = false;      // the chain is closed: its end returns to its start, G2
   bool fix_start = false;   // the chain starts at the first point (a corner) and stays there
   bool fix_end = false;     // the chain ends at the last point (a corner) and stays there
+  /// The chain is a window of a longer G2 chain (its segments near an edit), to stay G2
+  /// with the segments on either side: it keeps its start's position, tangent and
+  /// curvature as `initial` has them, and ends at `window_end` (position, tangent) with
+  /// the curvature `initial` ends with; only its inside moves. The points are those near
+  /// it, none of them pinned to its ends. (Not with closed, fix_start, fix_end or corners.)
+  bool window = false;
+  struct Pose {
+    Vec2 point = Vec2::Zero();
+    double theta = 0.0;
+  } window_end;
   /// Corners, in order along the chain: the chain is continuous there in position only,
   /// the tangent turns by a free angle and each side has its own curvature; where the
   /// corner lands is fitted. The points between two corners are those of the segments

@@ -43,10 +43,10 @@ constexpr double kMarkedGain = 0.99;
 // A trial simplification whose fit stops at its iteration limit further than this many
 // times the distance it must keep is not given the patience of longer fits.
 constexpr double kHopelessTrial = 2.0;
-// ... and one whose segments near the edit, fitted alone with their ends free, stay
-// further than this many times that distance is not fitted whole (at 2 a drawn star's
-// model selection took another path and missed its tolerance 1.8 times: a window's
-// fit stops at its own iteration limit, short of the relaxation's optimum).
+// ... and one whose segments near the edit, fitted alone (selectChain's refitNearby),
+// stay further than this many times that distance is not fitted whole (at 2 a drawn
+// star's model selection took another path and missed its tolerance 1.8 times: a
+// window's fit stops at its own iteration limit, short of its optimum).
 constexpr double kHopelessWindow = 4.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
@@ -391,18 +391,27 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     return true;
   };
   // A trial edit's segments near `center` (two on either side, in the edited chain),
-  // fitted alone to the points whose feet are on them, their ends free: a relaxation of
-  // the whole chain's fit there. Where even it stays further than kHopelessWindow times
-  // `keep_within` from those points, the whole chain's fit would not keep the edit, and
-  // is not run (most trial simplifications fail, and a window costs a fraction of the
-  // chain). Not across a corner, nor where the window is most of the chain.
-  auto hopelessNearby = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, std::size_t center, double keep_within) {
-    const std::size_t n = e.pieces.size();
+  // fitted alone to the points whose feet are on them. Where even they stay further than
+  // kHopelessWindow times `keep_within` from those points, the whole chain's fit would
+  // not keep the edit, and is not run (most trial simplifications fail, and a window
+  // costs a fraction of the chain). Inside the chain, the window is pinned to the
+  // segments on either side where they were before the edit (ChainFitOptions::window),
+  // and where its fit improves on the edit, the whole chain's fit starts from the edit
+  // with that window: G2, and nearer the points than the crude edit. At an open chain's
+  // end, the window's ends are free (and `start` stays empty). Not across a corner, nor
+  // where the window is most of the chain.
+  struct Nearby {
+    bool hopeless = false;
+    std::vector<LaSegment> start;  // the edited chain with the window refitted
+    std::vector<ChainFoot> feet;   // on it
+  };
+  auto refitNearby = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, std::size_t center, double keep_within) {
+    Nearby nearby;
+    const std::size_t n = e.pieces.size(), old_n = out.fit.segments.size();
     const std::size_t lo = center >= 2 ? center - 2 : 0, hi = std::min(n, center + 2);
-    if (lo >= hi || 2 * (hi - lo) > n) return false;
-    for (std::size_t i = lo; i < hi; ++i)
-      if ((i > lo || i == 0) && e.pieces[i].atCorner()) return false;
-    if (hi < n && e.pieces[hi].atCorner()) return false;
+    if (lo >= hi || 2 * (hi - lo) > n) return nearby;
+    for (std::size_t i = lo; i <= hi && i < n; ++i)
+      if ((i > lo || i == 0) && e.pieces[i].atCorner()) return nearby;
     std::vector<LaSegment> window(rebuilt.begin() + static_cast<std::ptrdiff_t>(lo), rebuilt.begin() + static_cast<std::ptrdiff_t>(hi));
     std::vector<Vec2> near;
     std::vector<ChainFoot> near_feet;
@@ -415,8 +424,25 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     o.corners.clear();
     o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
     o.weights.clear();
+    // (the segments from hi on are the chain's from hi + old_n - n on, unedited)
+    const auto unedited = out.fit.segments.begin() + static_cast<std::ptrdiff_t>(hi + old_n - n);
+    o.window = hi < n;
+    if (o.window) o.window_end = {unedited->start(), unedited->theta0()};
+    // (a fit that does not improve on the edit reports the edit's own distances)
     const ChainFitResult r = fitChain(window, near, near_feet, o);
-    return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * keep_within;
+    if (r.report.status == SolveStatus::kBadInput) return nearby;
+    nearby.hopeless = r.max_distance > kHopelessWindow * keep_within;
+    if (!o.window || !r.improved || nearby.hopeless) return nearby;
+    nearby.start.assign(rebuilt.begin(), rebuilt.begin() + static_cast<std::ptrdiff_t>(lo));
+    nearby.start.insert(nearby.start.end(), r.segments.begin(), r.segments.end());
+    nearby.start.insert(nearby.start.end(), unedited, out.fit.segments.end());
+    nearby.feet = e.feet;
+    for (std::size_t k = 0, j = 0; k < points.size(); ++k)
+      if (e.feet[k].segment >= lo && e.feet[k].segment < hi) {
+        nearby.feet[k] = {r.feet[j].segment + lo, r.feet[j].u};
+        ++j;
+      }
+    return nearby;
   };
   // An edit is kept if the refitted chain is within the tolerance (or no further outside
   // it than before) and the points do not object (the F-test above); a merge at a weak
@@ -500,8 +526,17 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         if (!e) continue;
         const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
-        if (!rebuilt || hopelessNearby(*e, *rebuilt, c.index, keep_within)) continue;
-        auto r = attemptRebuilt(*e, *rebuilt, keep_within);
+        if (!rebuilt) continue;
+        const Nearby nearby = refitNearby(*e, *rebuilt, c.index, keep_within);
+        if (nearby.hopeless) continue;
+        std::optional<Attempt> r;
+        if (nearby.start.empty()) {
+          r = attemptRebuilt(*e, *rebuilt, keep_within);
+        } else {
+          Edit from_window = *e;
+          from_window.feet = nearby.feet;
+          r = attemptRebuilt(from_window, nearby.start, keep_within);
+        }
         // (a line only within the tolerance: bent again, it is a crude start for a split)
         if (!r || !keep(r->fit, c.extremum) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         not_kept.pop_back();

@@ -224,6 +224,44 @@ TEST(ChainFit, FixedEndsStay) {
   EXPECT_LT(maxDistance(snapped, points), 1e-5);
 }
 
+// The middle three segments of a five-segment chain (an inflection among them), fitted
+// as a window from a start off in every alpha, length and inner curvature, so that it
+// ends 10 units and 0.01 rad away from the last segment's start: the window's ends meet
+// the neighbours in position, tangent and curvature (the spliced chain is G2), and its
+// inside comes back to the truth.
+TEST(ChainFit, AWindowKeepsItsEndsAndFitsItsInside) {
+  const std::vector<LaSegment> truth = buildChain(
+      {5, -3}, 0.2, 0.01, {{0.5, 60.0, 0.02}, {1.5, 50.0, 0.006}, {-1.0, 45.0, 0.0}, {-0.5, 55.0, -0.015}, {2.0, 40.0, -0.03}});
+  const std::vector<LaSegment> inside(truth.begin() + 1, truth.begin() + 4);
+  const std::vector<Vec2> points = sampleChain(inside, 150, 0.0, 5);
+  const std::vector<LaSegment> start = buildChain(inside.front().start(), inside.front().theta0(), inside.front().kappaStart(),
+                                                  {{0.8, 47.0, 0.007}, {-1.6, 48.0, 0.0}, {-1.0, 52.0, -0.015}});
+  ChainFitOptions options;
+  options.window = true;
+  options.window_end = {truth[4].start(), truth[4].theta0()};
+  const ChainFitResult r = fitChain(start, points, {}, options);
+  ASSERT_TRUE(r.improved) << r.report.message;
+  ASSERT_EQ(r.segments.size(), 3u);
+  const LaSegment &first = r.segments.front(), &last = r.segments.back();
+  EXPECT_EQ(first.start(), inside.front().start());
+  EXPECT_NEAR(first.theta0(), inside.front().theta0(), 1e-12);
+  EXPECT_NEAR(first.kappaStart(), inside.front().kappaStart(), 1e-15);
+  EXPECT_LT((last.end() - inside.back().end()).norm(), 1e-9 * 150.0);
+  EXPECT_NEAR(last.theta(last.length()), inside.back().theta(inside.back().length()), 1e-9);
+  EXPECT_NEAR(last.kappaEnd(), inside.back().kappaEnd(), 1e-15);
+  expectG2(r.segments);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(r.segments[i].alpha(), inside[i].alpha(), 5e-3) << "segment " << i;
+  EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 150.0);
+}
+
+// A window's ends are set by the segments beside it, not by corner points.
+TEST(ChainFit, RefusesAWindowWithEndsOfItsOwn) {
+  const std::vector<LaSegment> chain = buildChain({0, 0}, 0.0, 0.01, {{0.5, 60.0, 0.02}});
+  ChainFitOptions options;
+  options.window = options.fix_end = true;
+  EXPECT_EQ(fitChain(chain, sampleChain(chain, 20, 0.0, 1), {}, options).report.status, SolveStatus::kBadInput);
+}
+
 // A hairpin's tight turn running out into a nearly straight stroke: the joint's
 // curvature is 1e-4 of the turn's, far below the solver's floor for joint curvatures
 // (1e-3 of the largest). Started from the truth itself, the fit must not move the chain
