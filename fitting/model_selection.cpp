@@ -398,8 +398,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // segments on either side where they were before the edit (ChainFitOptions::window),
   // and where its fit improves on the edit, the whole chain's fit starts from the edit
   // with that window: G2, and nearer the points than the crude edit. At an open chain's
-  // end, the window's ends are free (and `start` stays empty). Not across a corner, nor
-  // where the window is most of the chain.
+  // end, and at a closed chain's seam, the window's ends are free (and `start` stays
+  // empty). Not across a corner, nor where the window is most of the chain.
   struct Nearby {
     bool hopeless = false;
     std::vector<LaSegment> start;  // the edited chain with the window refitted
@@ -426,7 +426,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     o.weights.clear();
     // (the segments from hi on are the chain's from hi + old_n - n on, unedited)
     const auto unedited = out.fit.segments.begin() + static_cast<std::ptrdiff_t>(hi + old_n - n);
-    o.window = hi < n;
+    // (a closed chain's first segment collapsed changes its last one too: no window)
+    o.window = hi < n && !(closed && center == 0);
     if (o.window) o.window_end = {unedited->start(), unedited->theta0()};
     // (a fit that does not improve on the edit reports the edit's own distances)
     const ChainFitResult r = fitChain(window, near, near_feet, o);
