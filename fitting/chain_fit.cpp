@@ -1447,19 +1447,20 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   auto exactConstraints = [&](const std::vector<LaSegment>& chain, const Eigen::VectorXd& xx) {
     const Vec2 end = (chain.back().end() - origin) / scale;
     Eigen::VectorXd value(layout.constraints());
+    auto turning = [&] {  // (the segments' and the corners')
+      double sum = 0.0;
+      for (const LaSegment& seg : chain) sum += seg.turning();
+      for (int turn : layout.corner_turn)
+        if (turn >= 0) sum += xx[turn];
+      return sum;
+    };
     if (layout.seamCorner()) {
       value << end - (chain.front().start() - origin) / scale;
     } else if (layout.closed) {
-      double turning = 0.0;
-      for (const LaSegment& seg : chain) turning += seg.turning();
-      for (int turn : layout.corner_turn)
-        if (turn >= 0) turning += xx[turn];
-      value << end - (chain.front().start() - origin) / scale, turning - layout.total_turning;
+      value << end - (chain.front().start() - origin) / scale, turning() - layout.total_turning;
     } else if (layout.window) {
-      double turning = 0.0;
-      for (const LaSegment& seg : chain) turning += seg.turning();
       value.head(2) = end - layout.end_point;
-      value[2] = xx[layout.theta] + turning - layout.end_angle;
+      value[2] = xx[layout.theta] + turning() - layout.end_angle;
       for (std::size_t k = 0; k < layout.held.size(); ++k)
         value[3 + static_cast<Eigen::Index>(k)] = xx[layout.held[k].first] - layout.held[k].second;
     } else if (layout.fix_end) {

@@ -465,10 +465,9 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       std::vector<bool> corner(n + 1, false);  // (joint n: the end, or a closed chain's seam again)
       for (const ChainCorner& c : out.corners) corner[c.joint] = true;
       corner[n] = closed && corner[0];
-      using Kind = EditKind;
       struct Candidate {
         double weakness;  // smaller first
-        Kind kind;
+        EditKind kind;
         std::size_t index;
         std::size_t count = 1;  // segments collapsed or straightened together
         bool extremum = false;  // a merge at a (weak) curvature extremum
@@ -485,9 +484,9 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         // chain abruptly (a straight piece between inflections can end as a spike of two)
         const bool stub = segs[i].length() < options.tolerance;
         const bool spike = stub && i + 1 < n && segs[i].kappaStart() == 0.0 && segs[i + 1].kappaEnd() == 0.0;
-        if (spike) candidates.push_back({0.0, Kind::kCollapse, i, 2});
+        if (spike) candidates.push_back({0.0, EditKind::kCollapse, i, 2});
         else if ((turning < options.sliver_turning && options.refine) || hook || stub)
-          candidates.push_back({hook || stub ? 0.0 : turning, Kind::kCollapse, i});
+          candidates.push_back({hook || stub ? 0.0 : turning, EditKind::kCollapse, i});
       }
       // Nearly straight runs of one or two segments between zero-curvature joints or the
       // chain's ends: an LA segment has at most one zero end, so the solver can only
@@ -501,7 +500,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
           if ((count == 1 && first.isStraight()) || (count == 2 && corner[i + 1])) continue;
           if (!(first.kappaStart() == 0.0 || free(i)) || !(last.kappaEnd() == 0.0 || free(i + count))) continue;
           const double turning = std::abs(first.turning()) + (count == 2 ? std::abs(last.turning()) : 0.0);
-          if (turning < options.straight_turning) candidates.push_back({turning, Kind::kStraighten, i, count});
+          if (turning < options.straight_turning) candidates.push_back({turning, EditKind::kStraighten, i, count});
         }
       for (std::size_t j = 1; j < n && !slivers_only; ++j) {
         if (corner[j]) continue;
@@ -511,7 +510,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         const bool monotone = (k0 - kj) * (kj - k1) > 0.0;
         const double change = std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj;
         if (monotone || change < options.weak_extremum)
-          candidates.push_back({1.0 + (monotone ? 0.0 : change), Kind::kMerge, j, 1, !monotone});
+          candidates.push_back({1.0 + (monotone ? 0.0 : change), EditKind::kMerge, j, 1, !monotone});
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
@@ -521,8 +520,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         const Tried tried{c.kind, c.index, c.count};
         if (std::find(not_kept.begin(), not_kept.end(), tried) != not_kept.end()) continue;
         not_kept.push_back(tried);  // (until it is kept, below)
-        const std::optional<Edit> e = c.kind == Kind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
-                                      : c.kind == Kind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
+        const std::optional<Edit> e = c.kind == EditKind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
+                                      : c.kind == EditKind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
                                                                 : straighten(segs, out.fit.feet, out.corners, c.index, c.count);
         const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         if (!e) continue;
@@ -539,10 +538,10 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
           r = attemptRebuilt(from_window, nearby.start, keep_within);
         }
         // (a line only within the tolerance: bent again, it is a crude start for a split)
-        if (!r || !keep(r->fit, c.extremum) || (c.kind == Kind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
+        if (!r || !keep(r->fit, c.extremum) || (c.kind == EditKind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
         not_kept.pop_back();
         take(std::move(*r));
-        ++(c.kind == Kind::kCollapse ? out.collapses : c.kind == Kind::kMerge ? out.merges : out.straightenings);
+        ++(c.kind == EditKind::kCollapse ? out.collapses : c.kind == EditKind::kMerge ? out.merges : out.straightenings);
         changed = true;
         break;
       }
