@@ -973,35 +973,54 @@ class StepSystem {
   }
 
  private:
-  // The KKT system of the unknowns not held; the held ones keep their moves in d.
+  // The KKT system of the unknowns not held; the held ones keep their moves in d. By its
+  // Schur complement: H (A + lambda D on the free unknowns) is positive definite, so one
+  // Cholesky factor of it and a small system for the multipliers,
+  //   nu = (C H^-1 C^T)^-1 (C H^-1 b - e),  d = H^-1 (b - C^T nu),
+  // where a pivoted LU of the whole KKT matrix cost twice the Cholesky's arithmetic. A
+  // factor that fails (rounding, lambda tiny) gives a non-finite step: the caller damps
+  // more.
   void factor(const std::vector<int>& held, const Eigen::VectorXd& d) {
     free_.clear();
     held_ = d;
     for (int i = 0; i < p_; ++i)
       if (held[i] == 0) free_.push_back(i), held_[i] = 0.0;
     const int f = static_cast<int>(free_.size());
-    Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(f + m_, f + m_);
-    for (int i = 0; i < f; ++i) {
-      for (int k = 0; k < f; ++k) kkt(i, k) = h_(free_[i], free_[k]);
-      for (int r = 0; r < m_; ++r) kkt(f + r, i) = kkt(i, f + r) = cj_(r, free_[i]);
+    Eigen::MatrixXd h(f, f);
+    for (int k = 0; k < f; ++k)
+      for (int i = k; i < f; ++i) h(i, k) = h_(free_[i], free_[k]);  // (the lower triangle)
+    llt_.compute(h);
+    c_free_.resize(m_, f);
+    for (int i = 0; i < f; ++i) c_free_.col(i) = cj_.col(free_[i]);
+    if (m_ > 0 && llt_.info() == Eigen::Success) {
+      h_inverse_ct_ = llt_.solve(c_free_.transpose());
+      schur_.compute(c_free_ * h_inverse_ct_);
     }
-    lu_.compute(kkt);
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& g, const Eigen::VectorXd& c) { return solveWith(g, c, held_, &nu_); }
   Eigen::VectorXd solveWith(const Eigen::VectorXd& g, const Eigen::VectorXd& c, const Eigen::VectorXd& held,
                             Eigen::VectorXd* nu = nullptr) const {
     const int f = static_cast<int>(free_.size());
+    Eigen::VectorXd step = held;
+    if (llt_.info() != Eigen::Success) {
+      for (int i : free_) step[i] = NAN;
+      if (nu) nu->setConstant(m_, NAN);
+      return step;
+    }
     // (the held moves enter the right-hand side; free entries of `held` are zero)
     const bool moves = held.any();  // (.any(): nonzero entries)
     const Eigen::VectorXd g_held = moves ? Eigen::VectorXd(g + h_ * held) : g;
     const Eigen::VectorXd c_held = moves ? Eigen::VectorXd(c + cj_ * held) : c;
-    Eigen::VectorXd rhs(f + m_);
-    for (int i = 0; i < f; ++i) rhs[i] = -g_held[free_[i]];
-    for (int r = 0; r < m_; ++r) rhs[f + r] = -c_held[r];
-    const Eigen::VectorXd solution = lu_.solve(rhs);
-    Eigen::VectorXd step = held;
-    for (int i = 0; i < f; ++i) step[free_[i]] = solution[i];
-    if (nu) *nu = solution.tail(m_);
+    Eigen::VectorXd b(f);
+    for (int i = 0; i < f; ++i) b[i] = -g_held[free_[i]];
+    Eigen::VectorXd move = llt_.solve(b);
+    Eigen::VectorXd multipliers = Eigen::VectorXd::Zero(m_);
+    if (m_ > 0) {
+      multipliers = schur_.solve(c_free_ * move + c_held);
+      move -= h_inverse_ct_ * multipliers;
+    }
+    for (int i = 0; i < f; ++i) step[free_[i]] = move[i];
+    if (nu) *nu = multipliers;
     return step;
   }
 
@@ -1011,7 +1030,9 @@ class StepSystem {
   Eigen::VectorXd held_;  // the move of each held unknown (zero for a free one)
   Eigen::VectorXd step_, nu_;
   std::vector<int> free_;
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  Eigen::LLT<Eigen::MatrixXd> llt_;
+  Eigen::MatrixXd c_free_, h_inverse_ct_;  // C on the free unknowns, H^-1 C^T
+  Eigen::LDLT<Eigen::MatrixXd> schur_;     // of C H^-1 C^T
 };
 
 // The factor (<= 1) that shortens a step to the trust caps.
