@@ -556,7 +556,11 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // every point within the tolerance may still exist where it leaves a few outside.
   // Lawson's iteration looks for it: each round multiplies every point's weight by its
   // distance over the tolerance (where above 1) and fits again from the current chain,
-  // kept while the largest distance falls. Tried before any segment is added.
+  // kept while the largest distance falls. Tried before any segment is added. From the
+  // third round (the first ones' weights are still near 1, and their gain says little),
+  // the rounds stop where the rounds left, each gaining what the last one did, would
+  // not bring the largest distance within the tolerance: on the shared data most rounds
+  // crawled so (a few thousandths of the tolerance each) into a split all the same.
   auto reweigh = [&] {
     std::vector<double> weights(points.size(), 1.0);
     for (int round = 0; round < options.reweighing_rounds && out.fit.max_distance > options.tolerance; ++round) {
@@ -567,8 +571,11 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       weighted.corners = out.corners;
       const ChainFitResult r = fitChain(out.fit.segments, points, out.fit.feet, weighted);
       if (!r.improved || !(r.max_distance < out.fit.max_distance) || !withinCap(r, out.corners)) break;
+      const double gain = out.fit.max_distance - r.max_distance;
       out.fit = r;
       not_kept.clear();
+      const int rounds_left = options.reweighing_rounds - round - 1;
+      if (round >= 2 && out.fit.max_distance - options.tolerance > rounds_left * gain) break;
     }
   };
   // The cap on extrema (see the header): merges at the extrema of parts over it, the
