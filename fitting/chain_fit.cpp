@@ -95,6 +95,20 @@ T expm1OverX(const T& x) {
   if (std::abs(valueOf(x)) < kSeriesLimit) return 1.0 + x * (0.5 + x * (1.0 / 6.0 + x * (1.0 / 24.0)));
   return expm1(x) / x;
 }
+// e^x and (e^x - 1) / x by one transcendental call: expm1 where |x| is small (e^x - 1
+// would cancel there), exp elsewhere (1 + expm1(x) would cancel where e^x is tiny).
+constexpr double kExpm1Limit = 0.5;
+template <typename T>
+void expAndExpm1OverX(const T& x, T& exp_x, T& expm1_over_x) {
+  using std::exp;
+  if (std::abs(valueOf(x)) < kExpm1Limit) {
+    expm1_over_x = expm1OverX(x);
+    exp_x = 1.0 + x * expm1_over_x;
+  } else {
+    exp_x = exp(x);
+    expm1_over_x = (exp_x - 1.0) / x;
+  }
+}
 template <typename T>
 T log1pOverX(const T& x) {
   using std::log1p;
@@ -142,29 +156,21 @@ class LawEvaluator {
   }
 
   T theta(double u) const {
-    using std::exp;
-    using std::expm1;
-    switch (zero_) {
-      case ZeroEnd::kNone: {
-        const T g = log1pOverX(alpha_ * big_r_ * u);
-        return turning_ref_ * u * g * expm1OverX((alpha_ - 1.0) * big_r_ * u * g);
-      }
-      case ZeroEnd::kEnd: return u >= 1.0 ? turning_ref_ / e_ : -turning_ref_ * expm1(e_ * std::log1p(-u)) / e_;
-      case ZeroEnd::kStart: return u <= 0.0 ? T(0.0) : turning_ref_ * exp(e_ * std::log(u)) / e_;
-      case ZeroEnd::kBoth: return T(0.0);
-    }
-    return T(0.0);
+    T theta_u{}, kappa_u{};
+    thetaAndKappa(u, theta_u, kappa_u);
+    return theta_u;
   }
-  // theta(u) (as theta() to the bit: the same expressions) and kappa(u), sharing their
-  // logarithm: one transcendental call fewer per panel end.
+  // theta(u) and kappa(u) from one logarithm and one exponential: with v = 1 + alpha R u
+  // (v ~ rho^alpha), kappa / kappa0 = v^(-1/alpha) = e^z / v for the z = (alpha - 1) / alpha
+  // log v that theta needs anyway (zero ends alike, v = 1 - u or u).
   void thetaAndKappa(double u, T& theta_u, T& kappa_u) const {
-    using std::exp;
-    using std::expm1;
+    T exp_z, expm1_over_z;
     switch (zero_) {
       case ZeroEnd::kNone: {
-        const T g = log1pOverX(alpha_ * big_r_ * u);
-        theta_u = turning_ref_ * u * g * expm1OverX((alpha_ - 1.0) * big_r_ * u * g);
-        kappa_u = kappa_ref_ * exp(-big_r_ * u * g);
+        const T x = alpha_ * big_r_ * u, g = log1pOverX(x);
+        expAndExpm1OverX(T((alpha_ - 1.0) * big_r_ * u * g), exp_z, expm1_over_z);
+        theta_u = turning_ref_ * u * g * expm1_over_z;
+        kappa_u = kappa_ref_ * exp_z / (1.0 + x);
         return;
       }
       case ZeroEnd::kEnd: {
@@ -173,8 +179,10 @@ class LawEvaluator {
           return;
         }
         const double l = std::log1p(-u);
-        theta_u = -turning_ref_ * expm1(e_ * l) / e_;
-        kappa_u = kappa_ref_ * exp(-l / alpha_);
+        const T z = e_ * l;
+        expAndExpm1OverX(z, exp_z, expm1_over_z);
+        theta_u = -turning_ref_ * l * expm1_over_z;  // (-turning_ref (e^z - 1) / e)
+        kappa_u = kappa_ref_ * exp_z / (1.0 - u);
         return;
       }
       case ZeroEnd::kStart: {
@@ -182,9 +190,10 @@ class LawEvaluator {
           theta_u = kappa_u = T(0.0);
           return;
         }
-        const double l = std::log(u);
-        theta_u = turning_ref_ * exp(e_ * l) / e_;
-        kappa_u = kappa_ref_ * exp(-l / alpha_);
+        using std::exp;
+        exp_z = exp(e_ * std::log(u));
+        theta_u = turning_ref_ * exp_z / e_;
+        kappa_u = kappa_ref_ * exp_z / u;
         return;
       }
       case ZeroEnd::kBoth: theta_u = kappa_u = T(0.0); return;
