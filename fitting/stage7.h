@@ -40,10 +40,10 @@ enum class SplineStart { kShotThenHalved, kShot, kHalved };
 void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true,
                 SplineStart spline_start = SplineStart::kShotThenHalved);
 
-/// Stage 7's selection options for `parts` parts' points: the tolerance less a margin,
-/// the alpha range and the bound on curvature, the points and iterations per fit, the
-/// noise, the cap and the deadline; closure, fixed ends and corners are the caller's.
-SelectionOptions stage7Selection(const FitContext& context, std::size_t parts = 1);
+/// Stage 7's selection options: the tolerance less a margin, the alpha range and the
+/// bound on curvature, the points and iterations per fit, the noise, the cap and the
+/// deadline; closure, fixed ends and corners are the caller's.
+SelectionOptions stage7Selection(const FitContext& context);
 
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);
