@@ -124,6 +124,7 @@ enum class ZeroEnd { kNone, kStart, kEnd, kBoth };
 struct Law {
   double alpha = -1.0, y0 = 0.0, y1 = 0.0, length = 1.0, sign = 1.0;
   double log_turning = 0.0;  // log of |total turning| (the unknown that sets the length; a line's: log length)
+  double turning = 0.0;      // |total turning| (radians; the panels follow it)
   ZeroEnd zero = ZeroEnd::kNone;
 };
 
@@ -237,24 +238,20 @@ void panelGrid(const Law& law, const GridRule& rule, std::vector<double>& out) {
     for (int k = 0; k <= widths; ++k) out.push_back(static_cast<double>(k) / widths);
   };
   if (law.zero == ZeroEnd::kBoth) return uniform();  // a line: positions are exact on any panels
-  double v0 = 1.0, v1 = 1.0, turning;
+  double v0 = 1.0, v1 = 1.0;
+  const double turning = law.turning;
   // (e only where an end is zero: for alpha = 0, Nielsen's spiral, it is infinite, and the
   // check below took the law for a broken one and gave it uniform panels, turning by
   // radians each: a 2.5-turn spiral's fit from its own segment drifted 41 units off)
   const double e = law.zero == ZeroEnd::kNone ? 1.0 : 1.0 - 1.0 / law.alpha;
-  if (law.zero == ZeroEnd::kNone) {
-    v1 = std::exp(law.alpha * (law.y0 - law.y1));
-    turning = law.length * unitTurning(law.alpha, law.y0, law.y1, law.zero);
-  } else {
-    (law.zero == ZeroEnd::kStart ? v0 : v1) = 0.0;
-    turning = std::exp(law.zero == ZeroEnd::kEnd ? law.y0 : law.y1) * law.length / e;
-  }
+  if (law.zero == ZeroEnd::kNone) v1 = std::exp(law.alpha * (law.y0 - law.y1));
+  else (law.zero == ZeroEnd::kStart ? v0 : v1) = 0.0;
   // A law doubles cannot evaluate: a wild step's NaN unknown, or 1 + r rounding to 0
-  // where alpha (y0 - y1) < -37 (the law's turning comes out NaN though the segment
+  // where alpha (y0 - y1) < -37 (the law's length comes out NaN though the segment
   // exists), or v1 overflowing. Its positions come out NaN on any panels and buildModel
   // refuses it like an overflow; the uniform panels only keep the count an int (a NaN
   // cast to int here was undefined behaviour: the fit fuzzer's first finding).
-  if (!std::isfinite(turning) || !std::isfinite(e) || !std::isfinite(v1)) return uniform();
+  if (!std::isfinite(turning) || !std::isfinite(law.length) || !std::isfinite(e) || !std::isfinite(v1)) return uniform();
   thread_local std::vector<double> grid;
   grid.clear();
   // Equal turning: uniform for the bound, graded as turning ~ u^e from a zero start
@@ -640,7 +637,8 @@ struct Layout {
     l.alpha = x[alpha[i]];
     l.y0 = l.zero == ZeroEnd::kStart ? 0.0 : std::log(std::abs(x[kappa_start[i]]));
     l.y1 = l.zero == ZeroEnd::kEnd ? 0.0 : std::log(std::abs(x[kappa_end[i]]));
-    l.length = std::exp(l.log_turning) / unitTurning(l.alpha, l.y0, l.y1, l.zero);
+    l.turning = std::exp(l.log_turning);
+    l.length = l.turning / unitTurning(l.alpha, l.y0, l.y1, l.zero);
     l.sign = turn_sign[i];
     return l;
   }
@@ -1587,6 +1585,7 @@ void projectOnChain(const std::vector<LaSegment>& segments, bool closed, const s
   for (const LaSegment& s : segments) {
     Law law;
     law.length = s.length();
+    law.turning = std::abs(s.turning());
     law.alpha = std::isfinite(s.alpha()) ? s.alpha() : -1.0;
     law.sign = s.turnSign() < 0.0 ? -1.0 : 1.0;
     const double k0 = std::abs(s.kappaStart()), k1 = std::abs(s.kappaEnd());
