@@ -80,7 +80,10 @@ struct FitOptions {
   CleanupOptions cleanup;
   SegmentationOptions segmentation;   // significance, max_extrema, max_piece_turning
   G2Method g2 = G2Method::kNewton;
-  double g2_threshold = 1e-6;
+  /// Relative curvature gap stage 6 leaves at a joint (DESIGN.md section 6). Newton
+  /// converges quadratically, so 1e-10 costs a step or two more than the 1e-6 it was:
+  /// at 1e-6 a paper's chain that stage 7 kept was G2 to 1e-7 only.
+  double g2_threshold = 1e-10;
   /// Alpha from the LCG is kept inside this range (a noisy LCG can be steep).
   double min_alpha = -3.0, max_alpha = 3.0;
   /// Stage 7 (fitting/model_selection.h): fit each part's G2 chain to its points by

@@ -9,7 +9,7 @@
 //    clean-up code) must throw StrokeError, and only those; any other exception, or
 //    StrokeError on a fittable stroke, fails; a stroke whose points all lie on one line
 //    (decided here too) comes out as straight lines only;
-//  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-6 (DESIGN.md section 6);
+//  - the curve is not empty; g1 gap < 1e-9 rad; g2 gap < 1e-9 (DESIGN.md section 6);
 //    quality.max_dev <= FitResult::tolerance (plus a rounding allowance of 1e-9
 //    relative);
 //  - glyph contours (fitted with assume_closed, see tests/shared_data_sets.h), the
@@ -56,7 +56,7 @@ constexpr double kG0Threshold = 1e-9;  // of the diagonal (ours: the segments me
 // corner's tip; a loop is far longer).
 constexpr double kMaxStray = 2.0;
 constexpr double kG1Threshold = 1e-9;  // radians
-constexpr double kG2Threshold = 1e-6;  // relative curvature gap
+constexpr double kG2Threshold = 1e-9;  // relative curvature gap (issue 16: G2 to 1e-9 at every smooth joint)
 // max_dev may exceed the tolerance by rounding only: 1e-9 of the tolerance.
 constexpr double kDeviationAllowance = 1e-9;
 // Degenerate input as stroke.h defines it (its constants are private to stroke.cpp, so

@@ -26,7 +26,7 @@ inline constexpr const char* kFitOptionsHelp = R"(fitting options:
                        largest |curvature| are noise (default 0.2)
   --g2 METHOD          newton (default: all joints at once), bisection (the paper's
                        joint-by-joint method), or off (G1 only)
-  --g2-threshold T     relative curvature gap allowed at a joint (default 1e-6)
+  --g2-threshold T     relative curvature gap allowed at a joint (default 1e-10)
   --no-corners         fair across sharp corners instead of keeping them
   --no-close           never close a stroke whose end meets its start
   --closed             every stroke is a closed contour, whatever the gap between its
