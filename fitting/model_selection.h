@@ -18,7 +18,8 @@
 //  - straighten: a nearly straight run of one or two segments between zero-curvature
 //    joints or the chain's ends becomes one line (no LA segment has two zero ends, so
 //    the fit could only approach a line there, often with a stub), if the refit is
-//    within the tolerance;
+//    within the tolerance; so does a bump (0 -> kappa -> 0, two segments) however far
+//    it turns, where its points lie near a line and the chain keeps the tolerance;
 //  - bend: a line the worst point is off is bent towards it (one arc between corners
 //    or a chain's ends, else two segments), where another segment would be split.
 //
@@ -34,9 +35,10 @@
 // the points do not object: the rise of the sum of squared distances, per unknown
 // removed, is below `significance` times the residual variance (the F-test of nested
 // least-squares models). So segments the points need stay, and the count follows the
-// stroke, not the noise. A merge at a weak extremum is kept on the tolerance alone: the
-// fewest extrema come before the least squares (fitting/pipeline.h); under the F-test,
-// the shared data's curves kept 20 more extrema of 802 (extrema_dense). A merge at a
+// stroke, not the noise. A merge at a weak extremum, and a bump straightened, are kept
+// on the tolerance alone: the fewest extrema come before the least squares
+// (fitting/pipeline.h); under the F-test, the shared data's curves kept 20 more extrema
+// of 802 (extrema_dense), and their bumps 79 of 6,137 (--variants=8). A merge at a
 // strong one is not tried: on the tolerance alone, a chain built with 4 extrema (one a
 // curvature dip to a third of its neighbours') came back with 3.
 //

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <tuple>
 
 namespace la {
@@ -219,6 +220,52 @@ TEST(SelectChain, StraightensTwoFlatSegmentsIntoALine) {
   EXPECT_EQ(line.kappaEnd(), 0.0);
   EXPECT_EQ(line.turning(), 0.0);
   EXPECT_NEAR(line.length(), 100.0, 5.0);
+  EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+}
+
+// Reversals of the curvature along a chain, read off dense samples (changes below
+// 1e-9 are rounding): the extrema its curvature plot shows.
+int curvatureReversals(const std::vector<LaSegment>& chain) {
+  std::vector<double> kappa;
+  for (const LaSegment& s : chain) {
+    const CurveSamples smp = s.sample(50);
+    kappa.insert(kappa.end(), smp.kappa.begin(), smp.kappa.end());
+  }
+  int reversals = 0, trend = 0;
+  double anchor = kappa.front();
+  for (double k : kappa) {
+    if (std::abs(k - anchor) <= 1e-9) continue;
+    const int now = k > anchor ? 1 : -1;
+    if (trend != 0 && now != trend) ++reversals;
+    trend = now;
+    anchor = k;
+  }
+  return reversals;
+}
+
+// Points on a straight line with a gentle S of 0.4 tolerances (one period of a sine
+// over 200 units, no noise), started from the chain that follows the S: two bumps
+// (0 -> kappa -> 0, then the other way), whose fit keeps the S's three curvature
+// extrema. The S is signal, not noise, so the F-test keeps it; but a line keeps the
+// tolerance, and the fewest extrema come first: the bumps become a line, and the
+// curvature has no extremum left.
+TEST(SelectChain, StraightensBumpsTheToleranceAllows) {
+  constexpr double kAmplitude = 0.4 * kTolerance, kPeriod = 200.0;
+  constexpr double kSlope = kAmplitude * 2.0 * std::numbers::pi / kPeriod;
+  constexpr double kPeak = kSlope * 2.0 * std::numbers::pi / kPeriod;  // the sine's largest curvature
+  std::vector<Vec2> points;
+  for (int k = 0; k <= 200; ++k) points.emplace_back(k, kAmplitude * std::sin(2.0 * std::numbers::pi * k / kPeriod));
+  const std::vector<LaSegment> start =
+      buildChain({0, 0}, kSlope, 0.0, {{-1.0, 50.0, -kPeak}, {-1.0, 50.0, 0.0}, {-1.0, 50.0, kPeak}, {-1.0, 50.0, 0.0}});
+  const SelectionOptions options = selection();
+  const ChainFitResult plain = withoutEdits(start, points, options);
+  ASSERT_EQ(plain.segments.size(), 4u);
+  ASSERT_GE(curvatureReversals(plain.segments), 2);
+  const SelectionResult r = selectChain(start, points, {}, options);
+  EXPECT_GE(r.straightenings, 1);
+  EXPECT_EQ(curvatureReversals(r.fit.segments), 0);
+  EXPECT_LE(r.fit.segments.size(), 2u);
+  EXPECT_TRUE(std::any_of(r.fit.segments.begin(), r.fit.segments.end(), [](const LaSegment& s) { return s.isStraight(); }));
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
