@@ -80,4 +80,7 @@ inline double medianStep(const std::vector<Vec2>& points) {
   return steps[steps.size() / 2];
 }
 
+/// Largest distance of the points from their least-squares line (0 for fewer than two).
+double lineDeviation(const std::vector<Vec2>& points);
+
 }  // namespace la

@@ -52,23 +52,14 @@ constexpr double kHopelessWindow = 4.0;
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
 // The largest distance of the points whose feet are on segments i and i + 1 from those
-// points' least-squares line (0 for fewer than two). A bump (selectChain) whose points
-// stray further than the tolerance is what they need: its line's trial would hardly keep
-// the tolerance, and such trials fail at a cost.
+// points' least-squares line (lineDeviation). A bump (selectChain) whose points stray
+// further than the tolerance is what they need: its line's trial would hardly keep the
+// tolerance, and such trials fail at a cost.
 double spreadAboutLine(const std::vector<Vec2>& points, const std::vector<ChainFoot>& feet, std::size_t i) {
   std::vector<Vec2> own;
   for (std::size_t k = 0; k < points.size(); ++k)
     if (feet[k].segment == i || feet[k].segment == i + 1) own.push_back(points[k]);
-  if (own.size() < 2) return 0.0;
-  Vec2 mean = Vec2::Zero();
-  for (const Vec2& q : own) mean += q;
-  mean /= static_cast<double>(own.size());
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Vec2& q : own) scatter += (q - mean) * (q - mean).transpose();
-  const Vec2 normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(0);
-  double most = 0.0;
-  for (const Vec2& q : own) most = std::max(most, std::abs(normal.dot(q - mean)));
-  return most;
+  return lineDeviation(own);
 }
 
 // The chain as a curve, its corners marked.

@@ -27,7 +27,6 @@
 
 #include "fitting/stroke.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -636,20 +635,6 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
   if (c.removed_overlap > 0) message << ", " << c.removed_overlap << " cut as closing overlap";
   message << ", " << c.points.size() << " left)";
   throw StrokeError(message.str());
-}
-
-/// Largest distance of the points from their least-squares line.
-double lineDeviation(const std::vector<Vec2>& p) {
-  Vec2 centroid = Vec2::Zero();
-  for (const Vec2& q : p) centroid += q;
-  centroid /= static_cast<double>(p.size());
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const Vec2& q : p) scatter += (q - centroid) * (q - centroid).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
-  const Vec2 normal = eigen.eigenvectors().col(0);  // smallest eigenvalue first
-  double deviation = 0.0;
-  for (const Vec2& q : p) deviation = std::max(deviation, std::abs((q - centroid).dot(normal)));
-  return deviation;
 }
 
 bool collinear(const std::vector<Vec2>& p) {
