@@ -4,8 +4,8 @@
 
 namespace la {
 
-double lineDeviation(const std::vector<Vec2>& points) {
-  if (points.size() < 2) return 0.0;
+FittedLine leastSquaresLine(const std::vector<Vec2>& points) {
+  if (points.empty()) return {};
   Vec2 centroid = Vec2::Zero();
   for (const Vec2& q : points) centroid += q;
   centroid /= static_cast<double>(points.size());
@@ -15,7 +15,9 @@ double lineDeviation(const std::vector<Vec2>& points) {
   const Vec2 normal = eigen.eigenvectors().col(0);  // smallest eigenvalue first
   double deviation = 0.0;
   for (const Vec2& q : points) deviation = std::max(deviation, std::abs((q - centroid).dot(normal)));
-  return deviation;
+  return {centroid, Vec2(-normal.y(), normal.x()), deviation};
 }
+
+double lineDeviation(const std::vector<Vec2>& points) { return points.size() < 2 ? 0.0 : leastSquaresLine(points).deviation; }
 
 }  // namespace la

@@ -80,6 +80,14 @@ inline double medianStep(const std::vector<Vec2>& points) {
   return steps[steps.size() / 2];
 }
 
+/// The points' least-squares line (orthogonal distances): a point on it (their
+/// centroid), its unit direction, and the largest distance of the points from it.
+struct FittedLine {
+  Vec2 point = Vec2::Zero(), direction = Vec2::UnitX();
+  double deviation = 0.0;
+};
+FittedLine leastSquaresLine(const std::vector<Vec2>& points);
+
 /// Largest distance of the points from their least-squares line (0 for fewer than two).
 double lineDeviation(const std::vector<Vec2>& points);
 

@@ -25,7 +25,7 @@ struct Piece {
 };
 
 // The model selection's simplifying edits.
-enum class EditKind { kCollapse, kMerge, kStraighten };
+enum class EditKind { kCollapse, kMerge, kStraighten, kStraightenSide };
 
 // Alpha for a segment that gets a zero-curvature end (DESIGN.md section 2: alpha < 0).
 constexpr double kZeroEndAlpha = -1.0;
@@ -51,15 +51,59 @@ constexpr double kHopelessWindow = 4.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
+// The points whose feet are on segments i .. i + count - 1.
+std::vector<Vec2> pointsOn(const std::vector<Vec2>& points, const std::vector<ChainFoot>& feet, std::size_t i,
+                           std::size_t count) {
+  std::vector<Vec2> on;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (feet[k].segment >= i && feet[k].segment < i + count) on.push_back(points[k]);
+  return on;
+}
+
 // The largest distance of the points whose feet are on segments i and i + 1 from those
 // points' least-squares line (lineDeviation). A bump (selectChain) whose points stray
 // further than the tolerance is what they need: its line's trial would hardly keep the
 // tolerance, and such trials fail at a cost.
 double spreadAboutLine(const std::vector<Vec2>& points, const std::vector<ChainFoot>& feet, std::size_t i) {
-  std::vector<Vec2> own;
-  for (std::size_t k = 0; k < points.size(); ++k)
-    if (feet[k].segment == i || feet[k].segment == i + 1) own.push_back(points[k]);
-  return lineDeviation(own);
+  return lineDeviation(pointsOn(points, feet, i, 2));
+}
+
+// Whether side i .. i + count - 1 (straightenSide) may be a line: its points lie within
+// the tolerance of their least-squares line, and that line meets the tangent of the
+// segment beyond each corner within the tolerance of the corner's own point. (A straight
+// side's corner runs on past a rounded tip; where the trials were left to find out, half
+// of them failed so, each a fit of the whole chain. And a corner that wanders along the
+// stroke leaves the points of one part beside the curve of the next.)
+bool sideLineFits(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
+                  const std::vector<ChainFoot>& feet, const std::vector<ChainCorner>& corners, std::size_t i,
+                  std::size_t count, double tolerance) {
+  const std::vector<Vec2> own = pointsOn(points, feet, i, count);
+  if (own.size() < 2) return false;
+  const FittedLine line = leastSquaresLine(own);
+  if (line.deviation > tolerance) return false;
+  const std::size_t n = chain.size();
+  for (const ChainCorner& c : corners) {
+    if (c.joint != i && c.joint != (i + count) % n) continue;
+    // (the corner where the line crosses the other side's tangent line there)
+    const LaSegment& other = c.joint == i ? chain[(i + n - 1) % n] : chain[c.joint];
+    const Vec2 at = chain[c.joint].start(), along = unitVector(c.joint == i ? other.theta(other.length()) : other.theta0());
+    const double sine = cross(line.direction, along);
+    if (std::abs(sine) < 1e-9) return false;
+    const Vec2 corner = line.point + line.direction * (cross(at - line.point, along) / sine);
+    if ((corner - points[c.point]).norm() > tolerance) return false;
+  }
+  return true;
+}
+
+// A side's line keeps its corners within the tolerance of their own points (as above, of
+// the fitted chain).
+bool sideCornersHold(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
+                     const std::vector<ChainCorner>& corners, std::size_t line, double tolerance) {
+  const std::size_t n = chain.size();
+  for (const ChainCorner& c : corners)
+    if ((c.joint == line || c.joint == (line + 1) % n) && (chain[c.joint].start() - points[c.point]).norm() > tolerance)
+      return false;
+  return true;
 }
 
 // The chain as a curve, its corners marked.
@@ -164,25 +208,55 @@ std::optional<Edit> bendLine(const std::vector<LaSegment>& chain, const std::vec
   return e;
 }
 
+// Pieces i .. i + count - 1 of `e` (those of `chain`) become one line of `length`, which
+// keeps piece i's corner turn; their feet go onto it in proportion to the arc length.
+void replaceByLine(Edit& e, const std::vector<LaSegment>& chain, std::size_t i, std::size_t count, double length) {
+  std::vector<double> offset = {0.0};  // of each replaced segment along them
+  for (std::size_t k = i; k < i + count; ++k) offset.push_back(offset.back() + chain[k].length());
+  e.pieces[i] = {kZeroEndAlpha, 0.0, 0.0, 0.0, e.pieces[i].corner_turn, length};
+  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                 e.pieces.begin() + static_cast<std::ptrdiff_t>(i + count));
+  for (ChainFoot& f : e.feet) {
+    if (f.segment >= i + count) f.segment -= count - 1;
+    else if (f.segment >= i) f = {i, (offset[f.segment - i] + f.u * chain[f.segment].length()) / offset.back()};
+  }
+}
+
 // Replaces segments i .. i + count - 1 (nearly straight, between zero-curvature joints
 // or the chain's ends) by one line of their length, along the first one's start
 // tangent. Nullopt across a corner.
 std::optional<Edit> straighten(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
                                const std::vector<ChainCorner>& corners, std::size_t i, std::size_t count) {
   Edit e = unedited(chain, feet, corners);
-  std::vector<double> offset = {0.0};  // of each replaced segment along the line
+  double length = 0.0;
   for (std::size_t k = i; k < i + count; ++k) {
     if (k > i && e.pieces[k].atCorner()) return std::nullopt;
-    offset.push_back(offset.back() + chain[k].length());
+    length += chain[k].length();
   }
-  const double length = offset.back();
-  e.pieces[i] = {kZeroEndAlpha, 0.0, 0.0, 0.0, e.pieces[i].corner_turn, length};
-  e.pieces.erase(e.pieces.begin() + static_cast<std::ptrdiff_t>(i) + 1,
-                 e.pieces.begin() + static_cast<std::ptrdiff_t>(i + count));
-  for (ChainFoot& f : e.feet) {
-    if (f.segment >= i + count) f.segment -= count - 1;
-    else if (f.segment >= i) f = {i, (offset[f.segment - i] + f.u * chain[f.segment].length()) / length};
-  }
+  replaceByLine(e, chain, i, count, length);
+  return e;
+}
+
+// Replaces a side (segments i .. i + count - 1 between two corners, or a corner and the
+// open chain's end) by one line along its chord. The corners take the change of tangent,
+// so the rest of the chain stays where it is (straighten's line along the first
+// segment's tangent swings the rest of the chain by the side's turning: a side turning
+// tenths of a radian came back from its refit tolerances off).
+std::optional<Edit> straightenSide(const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& feet,
+                                   const std::vector<ChainCorner>& corners, std::size_t i, std::size_t count) {
+  Edit e = unedited(chain, feet, corners);
+  const std::size_t j = i + count;
+  const LaSegment& last = chain[j - 1];
+  const Vec2 from = chain[i].start(), to = last.end();
+  if (!((to - from).norm() > 0.0)) return std::nullopt;
+  const double chord = angleOf(to - from);
+  const double onto = std::remainder(chord - chain[i].theta0(), 2.0 * std::numbers::pi);
+  if (i == 0) e.theta += onto;
+  else e.pieces[i].corner_turn = std::remainder(e.pieces[i].corner_turn + onto, 2.0 * std::numbers::pi);
+  if (j < chain.size())
+    e.pieces[j].corner_turn =
+        std::remainder(e.pieces[j].corner_turn + last.theta(last.length()) - chord, 2.0 * std::numbers::pi);
+  replaceByLine(e, chain, i, count, (to - from).norm());
   return e;
 }
 
@@ -522,6 +596,25 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
           if (turning < options.straight_turning || bump_line)
             candidates.push_back({turning, EditKind::kStraighten, i, count, bump_line});
         }
+      // Sides (between two corners, or a corner and an open chain's end) whose points lie
+      // near a line, on a chain within the tolerance: a line candidate kept on the
+      // tolerance alone, as a bump. A side that curls into its corner, and the jump of
+      // curvature there, are extrema a straight side does not have.
+      if (!out.corners.empty() && out.fit.max_distance < options.tolerance) {
+        auto ends_side = [&](std::size_t joint) { return corner[joint] || (!closed && (joint == 0 || joint == n)); };
+        for (std::size_t i = 0; i < n; ++i) {
+          if (!ends_side(i) || (closed && i == 0 && !corner[0])) continue;
+          std::size_t j = i + 1;
+          while (j < n && !ends_side(j)) ++j;
+          if (j == n && closed && !corner[0]) break;  // (a side across the seam of a closed chain: not tried)
+          const std::size_t count = j - i;
+          if (count == 1 && segs[i].isStraight()) continue;
+          double turning = 0.0;
+          for (std::size_t k = i; k < j; ++k) turning += std::abs(segs[k].turning());
+          if (sideLineFits(segs, points, out.fit.feet, out.corners, i, count, options.tolerance))
+            candidates.push_back({turning, EditKind::kStraightenSide, i, count, true});
+        }
+      }
       for (std::size_t j = 1; j < n && !slivers_only; ++j) {
         if (corner[j]) continue;
         const double k0 = std::abs(segs[j - 1].kappaStart()), kj = std::abs(segs[j].kappaStart());
@@ -542,7 +635,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         not_kept.push_back(tried);  // (until it is kept, below)
         const std::optional<Edit> e = c.kind == EditKind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
                                       : c.kind == EditKind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
-                                                                : straighten(segs, out.fit.feet, out.corners, c.index, c.count);
+                                      : c.kind == EditKind::kStraighten ? straighten(segs, out.fit.feet, out.corners, c.index, c.count)
+                                                                        : straightenSide(segs, out.fit.feet, out.corners, c.index, c.count);
         const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         if (!e) continue;
         const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
@@ -558,7 +652,10 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
           r = attemptRebuilt(from_window, nearby.start, keep_within);
         }
         // (a line only within the tolerance: bent again, it is a crude start for a split)
-        if (!r || !keep(r->fit, c.extremum) || (c.kind == EditKind::kStraighten && r->fit.max_distance > options.tolerance)) continue;
+        const bool line = c.kind == EditKind::kStraighten || c.kind == EditKind::kStraightenSide;
+        if (!r || !keep(r->fit, c.extremum) || (line && r->fit.max_distance > options.tolerance)) continue;
+        if (c.kind == EditKind::kStraightenSide && !sideCornersHold(r->fit.segments, points, r->corners, c.index, options.tolerance))
+          continue;
         not_kept.pop_back();
         take(std::move(*r));
         ++(c.kind == EditKind::kCollapse ? out.collapses : c.kind == EditKind::kMerge ? out.merges : out.straightenings);

@@ -19,7 +19,10 @@
 //    joints or the chain's ends becomes one line (no LA segment has two zero ends, so
 //    the fit could only approach a line there, often with a stub), if the refit is
 //    within the tolerance; so does a bump (0 -> kappa -> 0, two segments) however far
-//    it turns, where its points lie near a line and the chain keeps the tolerance;
+//    it turns, where its points lie near a line and the chain keeps the tolerance, and a
+//    side (the segments between two corners, or a corner and an open chain's end) whose
+//    points lie near a line meeting its neighbours near the corners' points (a side
+//    that curls into its corner has extrema a straight one has not);
 //  - bend: a line the worst point is off is bent towards it (one arc between corners
 //    or a chain's ends, else two segments), where another segment would be split.
 //
@@ -35,8 +38,8 @@
 // the points do not object: the rise of the sum of squared distances, per unknown
 // removed, is below `significance` times the residual variance (the F-test of nested
 // least-squares models). So segments the points need stay, and the count follows the
-// stroke, not the noise. A merge at a weak extremum, and a bump straightened, are kept
-// on the tolerance alone: the fewest extrema come before the least squares
+// stroke, not the noise. A merge at a weak extremum, and a bump or a side straightened,
+// are kept on the tolerance alone: the fewest extrema come before the least squares
 // (fitting/pipeline.h); under the F-test, the shared data's curves kept 20 more extrema
 // of 802 (extrema_dense), and their bumps 79 of 6,137 (--variants=8). A merge at a
 // strong one is not tried: on the tolerance alone, a chain built with 4 extrema (one a

@@ -269,6 +269,33 @@ TEST(SelectChain, StraightensBumpsTheToleranceAllows) {
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
+// Two sides meeting at a corner, each curling gently into it (clothoids from zero
+// curvature at the chain's ends to 6.7e-4 at the corner: half a tolerance off their
+// lines at the corner; noise-free points). Fitted as they are, they keep their curls,
+// the curvature rising into the corner and falling after it: the corner's jump is a
+// reversal against both. Lines keep the tolerance, and the fewest extrema come first:
+// both sides become lines, the corner stays at the truth's, and the curvature has no
+// reversal left.
+TEST(SelectChain, StraightensSidesThatCurlIntoACorner) {
+  constexpr double kLength = 30.0, kCurl = 6.0 * 0.5 * kTolerance / (kLength * kLength);
+  const std::vector<LaSegment> truth = cornerChain(buildChain({0, 0}, 0.2, 0.0, {{-1.0, kLength, kCurl}}), kCornerTurn,
+                                                   kCurl, {{-1.0, kLength, 0.0}});
+  const std::vector<Vec2> points = sampleChain(truth, 60, 0.0, 1);
+  SelectionOptions options = selection();
+  options.fit.corners = {{1, 60}};
+  const ChainFitResult plain = withoutEdits(truth, points, options);
+  ASSERT_GE(curvatureReversals(plain.segments), 1) << "the curls' fit has no reversal: this test shows nothing";
+  const SelectionResult r = selectChain(truth, points, {}, options);
+  EXPECT_EQ(r.straightenings, 2);
+  ASSERT_EQ(r.fit.segments.size(), 2u);
+  EXPECT_TRUE(r.fit.segments[0].isStraight());
+  EXPECT_TRUE(r.fit.segments[1].isStraight());
+  EXPECT_EQ(curvatureReversals(r.fit.segments), 0);
+  ASSERT_EQ(r.corners.size(), 1u);
+  EXPECT_LT((r.fit.segments[1].start() - truth[1].start()).norm(), kTolerance);
+  EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+}
+
 // A line whose points bow away from it (an arc of 150 units with a sagitta of 0.5,
 // 2.5 tolerances) is bent towards its worst point: one arc, the chain's ends being
 // free, within the tolerance. (Split, it would stay two lines, that is one line.)
