@@ -51,6 +51,7 @@ constexpr double kHopelessWindow = 4.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
+
 // The points whose feet are on segments i .. i + count - 1.
 std::vector<Vec2> pointsOn(const std::vector<Vec2>& points, const std::vector<ChainFoot>& feet, std::size_t i,
                            std::size_t count) {
