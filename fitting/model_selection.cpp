@@ -69,6 +69,11 @@ double spreadAboutLine(const std::vector<Vec2>& points, const std::vector<ChainF
   return lineDeviation(pointsOn(points, feet, i, 2));
 }
 
+// Whether corner c is at either end of the segments i .. i + count - 1 of a chain of n.
+bool endsSide(const ChainCorner& c, std::size_t i, std::size_t count, std::size_t n) {
+  return c.joint == i || c.joint == (i + count) % n;
+}
+
 // Whether side i .. i + count - 1 (straightenSide) may be a line: its points lie within
 // the tolerance of their least-squares line, and that line meets the tangent of the
 // segment beyond each corner within the tolerance of the corner's own point. (A straight
@@ -84,7 +89,7 @@ bool sideLineFits(const std::vector<LaSegment>& chain, const std::vector<Vec2>& 
   if (line.deviation > tolerance) return false;
   const std::size_t n = chain.size();
   for (const ChainCorner& c : corners) {
-    if (c.joint != i && c.joint != (i + count) % n) continue;
+    if (!endsSide(c, i, count, n)) continue;
     // (the corner where the line crosses the other side's tangent line there)
     const LaSegment& other = c.joint == i ? chain[(i + n - 1) % n] : chain[c.joint];
     const Vec2 at = chain[c.joint].start(), along = unitVector(c.joint == i ? other.theta(other.length()) : other.theta0());
@@ -100,9 +105,8 @@ bool sideLineFits(const std::vector<LaSegment>& chain, const std::vector<Vec2>& 
 // the fitted chain).
 bool sideCornersHold(const std::vector<LaSegment>& chain, const std::vector<Vec2>& points,
                      const std::vector<ChainCorner>& corners, std::size_t line, double tolerance) {
-  const std::size_t n = chain.size();
   for (const ChainCorner& c : corners)
-    if ((c.joint == line || c.joint == (line + 1) % n) && (chain[c.joint].start() - points[c.point]).norm() > tolerance)
+    if (endsSide(c, line, 1, chain.size()) && (chain[c.joint].start() - points[c.point]).norm() > tolerance)
       return false;
   return true;
 }
@@ -251,12 +255,10 @@ std::optional<Edit> straightenSide(const std::vector<LaSegment>& chain, const st
   const Vec2 from = chain[i].start(), to = last.end();
   if (!((to - from).norm() > 0.0)) return std::nullopt;
   const double chord = angleOf(to - from);
-  const double onto = std::remainder(chord - chain[i].theta0(), 2.0 * std::numbers::pi);
+  const double onto = wrapAngle(chord - chain[i].theta0());
   if (i == 0) e.theta += onto;
-  else e.pieces[i].corner_turn = std::remainder(e.pieces[i].corner_turn + onto, 2.0 * std::numbers::pi);
-  if (j < chain.size())
-    e.pieces[j].corner_turn =
-        std::remainder(e.pieces[j].corner_turn + last.theta(last.length()) - chord, 2.0 * std::numbers::pi);
+  else e.pieces[i].corner_turn = wrapAngle(e.pieces[i].corner_turn + onto);
+  if (j < chain.size()) e.pieces[j].corner_turn = wrapAngle(e.pieces[j].corner_turn + last.theta(last.length()) - chord);
   replaceByLine(e, chain, i, count, (to - from).norm());
   return e;
 }
@@ -602,13 +604,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       // tolerance alone, as a bump. A side that curls into its corner, and the jump of
       // curvature there, are extrema a straight side does not have.
       if (!out.corners.empty() && out.fit.max_distance < options.tolerance) {
-        auto ends_side = [&](std::size_t joint) { return corner[joint] || (!closed && (joint == 0 || joint == n)); };
-        for (std::size_t i = 0; i < n; ++i) {
-          if (!ends_side(i) || (closed && i == 0 && !corner[0])) continue;
-          std::size_t j = i + 1;
-          while (j < n && !ends_side(j)) ++j;
-          if (j == n && closed && !corner[0]) break;  // (a side across the seam of a closed chain: not tried)
-          const std::size_t count = j - i;
+        // (the joints that end sides, in order; a closed chain's side across its seam, where
+        // the seam is no corner, is not tried)
+        std::vector<std::size_t> ends;
+        for (std::size_t joint = 0; joint <= n; ++joint)
+          if (corner[joint] || (!closed && (joint == 0 || joint == n))) ends.push_back(joint);
+        for (std::size_t side = 0; side + 1 < ends.size(); ++side) {
+          const std::size_t i = ends[side], j = ends[side + 1], count = j - i;
           if (count == 1 && segs[i].isStraight()) continue;
           double turning = 0.0;
           for (std::size_t k = i; k < j; ++k) turning += std::abs(segs[k].turning());
