@@ -61,6 +61,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "app/io/point_file.h"
@@ -261,12 +262,15 @@ void writeRows() {
   writeFileAtomically(g_settings.rows, csv);
 }
 
-// An integer flag "NAME=VALUE" with VALUE in [lo, hi] into `out`; false if malformed.
-bool intFlag(std::string_view arg, std::string_view name, int lo, int hi, int& out) {
+// A numeric flag "NAME=VALUE" (an int or a double) with VALUE in [lo, hi] into `out`;
+// false if malformed (NaN included).
+template <typename T>
+bool numberFlag(std::string_view arg, std::string_view name, T lo, T hi, T& out) {
   const std::string value(arg.substr(name.size()));
   std::size_t used = 0;
   try {
-    out = std::stoi(value, &used);
+    if constexpr (std::is_same_v<T, int>) out = std::stoi(value, &used);
+    else out = std::stod(value, &used);
   } catch (const std::logic_error&) {
     return false;
   }
@@ -280,19 +284,13 @@ bool takeFlags(int& argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg = argv[i];
     if (arg.starts_with("--max-extrema=")) {
-      if (!intFlag(arg, "--max-extrema=", -1, INT_MAX, g_settings.options.segmentation.max_extrema)) return false;
+      if (!numberFlag(arg, "--max-extrema=", -1, INT_MAX, g_settings.options.segmentation.max_extrema)) return false;
     } else if (arg.starts_with("--time-budget=")) {
-      const std::string value(arg.substr(std::string_view("--time-budget=").size()));
-      try {
-        g_settings.options.time_budget_ms = std::stod(value);
-      } catch (const std::logic_error&) {
-        return false;
-      }
-      if (!(g_settings.options.time_budget_ms >= 0.0)) return false;
+      if (!numberFlag(arg, "--time-budget=", 0.0, HUGE_VAL, g_settings.options.time_budget_ms)) return false;
     } else if (arg.starts_with("--variants=")) {
-      if (!intFlag(arg, "--variants=", 1, 8, g_settings.variants)) return false;
+      if (!numberFlag(arg, "--variants=", 1, 8, g_settings.variants)) return false;
     } else if (arg.starts_with("--repeats=")) {
-      if (!intFlag(arg, "--repeats=", 1, 10, g_settings.repeats)) return false;
+      if (!numberFlag(arg, "--repeats=", 1, 10, g_settings.repeats)) return false;
     } else if (arg == "--paper-only") {
       g_settings.options.polish = false;
     } else if (arg.starts_with("--data=")) {
