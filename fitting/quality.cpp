@@ -171,6 +171,7 @@ class EdgeGrid {
 
 std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>& points, double diagonal,
                                      double resolution) {
+  if (points.empty()) return {};  // (before the curve's sampling: measureLeftOut calls with none on most strokes)
   std::vector<Vec2> poly;
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
@@ -183,7 +184,6 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     poly.insert(poly.end(), smp.point.begin(), smp.point.end());
   }
   std::vector<double> out(points.size(), INFINITY);
-  if (points.empty()) return out;
   if (poly.size() < 2) {
     for (std::size_t i = 0; i < points.size(); ++i) out[i] = poly.empty() ? INFINITY : (points[i] - poly[0]).norm();
     return out;
