@@ -329,7 +329,8 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
 // corner where the sides meet; where that misses the tolerance, also with each corner's
 // point held at the corner (the tip of a rounded corner), starting from the first try's
 // chain, the better kept. Where the curve misses, the segments are chosen again too
-// (selectChain; else only hooks beside corners are collapsed). A straight part stays a
+// (selectChain; else only hooks beside corners are collapsed, and the fits take
+// kPolishAcrossIterations steps). A straight part stays a
 // line unless the selection bends it. Kept where it brings the curve closer to the
 // points, counting the stray, or keeps it within the tolerance. True if it changed the
 // chains; false where a part has no G2 chain.
