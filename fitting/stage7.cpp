@@ -28,7 +28,8 @@ constexpr int kFitIterations = 8;
 // off the samples, from chains close to their optimum: it takes this many steps. (With 8,
 // the steps after the corners have moved reshape the sides for the sum of squares alone:
 // on the shared data, 4 gave 44 curvature extrema fewer of 5,911 for 10 segments more of
-// 9,950 over data_benchmark --variants=8; 2 and 3, 36-37 extrema fewer for 23-28 more.)
+// 9,950 over data_benchmark --variants=8; 2 and 3, 36-37 extrema fewer for 23-28 more;
+// 5 and 6, 25 and 13 fewer for 24 and 12 more.)
 constexpr int kPolishAcrossIterations = 4;
 // A step of stage 7's fit lowering the sum of squared distances by less than the square
 // of this fraction of the tolerance moves no point by a visible part of it: the fit stops
