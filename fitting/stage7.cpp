@@ -24,8 +24,8 @@ namespace {
 // instructions, 5 segments more of 10,165 over data_benchmark --variants=8).
 constexpr std::size_t kFitPoints = 250;
 constexpr int kFitIterations = 8;
-// The fit across corners of parts that keep the tolerance already moves their corners
-// off the samples, from chains close to their optimum: it takes this many steps. (With 8,
+// Where the parts keep the tolerance already, the fit across corners only moves their
+// corners off the samples, from chains close to their optimum: it takes this many steps. (With 8,
 // the steps after the corners have moved reshape the sides for the sum of squares alone:
 // on the shared data, 4 gave 44 curvature extrema fewer of 5,911 for 10 segments more of
 // 9,950 over data_benchmark --variants=8; 2 and 3, 36-37 extrema fewer for 23-28 more;
@@ -330,11 +330,11 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
 // corner where the sides meet; where that misses the tolerance, also with each corner's
 // point held at the corner (the tip of a rounded corner), starting from the first try's
 // chain, the better kept. Where the curve misses, the segments are chosen again too
-// (selectChain; else only hooks beside corners are collapsed, and the fits take
-// kPolishAcrossIterations steps). A straight part stays a
-// line unless the selection bends it. Kept where it brings the curve closer to the
-// points, counting the stray, or keeps it within the tolerance. True if it changed the
-// chains; false where a part has no G2 chain.
+// (selectChain; else only hooks beside corners are collapsed, in fits of
+// kPolishAcrossIterations steps). A straight part stays a line unless the selection
+// bends it. Kept where it brings the curve closer to the points, counting the stray, or
+// keeps it within the tolerance. True if it changed the chains; false where a part has
+// no G2 chain.
 bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, bool closed,
                       const FitContext& context) {
   const std::size_t n = parts.size();
@@ -410,7 +410,7 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     return worst;
   };
   // (the segments are chosen again only where the curve misses: else they stay, but for
-  // hooks beside corners)
+  // hooks beside corners, and the fits only move the corners)
   so.refine = before > tol;
   if (!so.refine) co.max_iterations = kPolishAcrossIterations;
   std::vector<PartFit> out, held;
