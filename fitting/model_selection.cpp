@@ -580,7 +580,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       // approach a line there (a segment and a stub, or two flat ones). (Not beside a
       // corner: a line runs on past a rounded tip.)
       auto free = [&](std::size_t joint) { return !corner[joint] && !closed && (joint == 0 || joint == n); };
-      for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t i = 0; i < n && options.straighten_runs; ++i)
         for (std::size_t count = 1; count <= 2 && i + count <= n; ++count) {
           const LaSegment& first = segs[i];
           const LaSegment& last = segs[i + count - 1];

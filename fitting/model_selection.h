@@ -90,6 +90,10 @@ struct SelectionOptions {
   /// hooks beside corners and stubs are collapsed and nearly straight runs straightened
   /// (for segments chosen already).
   bool refine = true;
+  /// Nearly straight runs (of one or two segments) tried as lines. False where an earlier
+  /// selection chose the segments and tried their runs already (see fitAcrossCorners);
+  /// sides between corners are still tried.
+  bool straighten_runs = true;
   /// Curvature extrema allowed per smooth part (-1: no cap), counted and weighed as the
   /// quality figures count them, against this diagonal (the whole stroke's; 0: the points').
   int max_extrema = -1;

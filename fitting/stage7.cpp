@@ -410,8 +410,11 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     return worst;
   };
   // (the segments are chosen again only where the curve misses: else they stay, but for
-  // hooks beside corners, and the fits only move the corners)
-  so.refine = before > tol;
+  // hooks beside corners and sides straightened, and the fits only move the corners. The
+  // parts' nearly straight runs were tried as lines when their segments were chosen:
+  // tried again across corners, none of 194 was kept on the shared data, variants
+  // included, each a fit of the whole chain.)
+  so.refine = so.straighten_runs = before > tol;
   if (!so.refine) co.max_iterations = kPolishAcrossIterations;
   std::vector<PartFit> out, held;
   const SelectionResult free = selectChain(chain, points, {}, so);
