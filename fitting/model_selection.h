@@ -87,8 +87,8 @@ struct SelectionOptions {
   /// shaped (the app's editing works on them).
   double max_turning = 2.0;
   /// Slivers collapsed, splits (after Lawson's reweighting) and merges tried; false: only
-  /// hooks beside corners and stubs are collapsed and nearly straight runs straightened
-  /// (for segments chosen already).
+  /// hooks beside corners and stubs are collapsed and nearly straight runs (where
+  /// straighten_runs) and sides between corners straightened (for segments chosen already).
   bool refine = true;
   /// Nearly straight runs (of one or two segments) tried as lines. False where an earlier
   /// selection chose the segments and tried their runs already (see fitAcrossCorners);

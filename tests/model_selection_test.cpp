@@ -223,6 +223,22 @@ TEST(SelectChain, StraightensTwoFlatSegmentsIntoALine) {
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
+// The same start where an earlier selection chose the segments and tried their runs as
+// lines already (SelectionOptions::straighten_runs off, as the fit across corners of
+// parts that keep the tolerance asks): no run becomes a line.
+TEST(SelectChain, LeavesRunsAloneWhereTheyWereTriedAlready) {
+  const std::vector<LaSegment> truth =
+      buildChain({0, 0}, 0.2, 0.02, {{-1.0, 80.0, 0.0}, {INFINITY, 100.0, 0.0}, {-1.0, 80.0, -0.02}});
+  std::vector<LaSegment> start = {truth[0]};
+  appendChain(start, truth[0].end(), truth[0].theta(80.0), 0.0, {{-1.0, 50.0, 0.0005}, {-1.0, 50.0, 0.0}, {-1.0, 80.0, -0.02}});
+  const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
+  SelectionOptions options = selection();
+  options.straighten_runs = false;
+  const SelectionResult r = selectChain(start, points, {}, options);
+  EXPECT_EQ(r.straightenings, 0);
+  EXPECT_TRUE(std::none_of(r.fit.segments.begin(), r.fit.segments.end(), [](const LaSegment& s) { return s.isStraight(); }));
+}
+
 // Reversals of the curvature along a chain, read off dense samples (changes below
 // 1e-9 are rounding): the extrema its curvature plot shows.
 int curvatureReversals(const std::vector<LaSegment>& chain) {
@@ -294,6 +310,9 @@ TEST(SelectChain, StraightensSidesThatCurlIntoACorner) {
   ASSERT_EQ(r.corners.size(), 1u);
   EXPECT_LT((r.fit.segments[1].start() - truth[1].start()).norm(), kTolerance);
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+  // (sides are tried also where runs are not: SelectionOptions::straighten_runs)
+  options.straighten_runs = false;
+  EXPECT_EQ(selectChain(truth, points, {}, options).straightenings, 2);
 }
 
 // A line whose points bow away from it (an arc of 150 units with a sagitta of 0.5,
