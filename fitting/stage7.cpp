@@ -25,11 +25,11 @@ namespace {
 constexpr std::size_t kFitPoints = 250;
 constexpr int kFitIterations = 8;
 // Where the parts keep the tolerance already, the fit across corners only moves their
-// corners off the samples, from chains close to their optimum: it takes this many steps. (With 8,
-// the steps after the corners have moved reshape the sides for the sum of squares alone:
-// on the shared data, 4 gave 44 curvature extrema fewer of 5,911 for 10 segments more of
-// 9,950 over data_benchmark --variants=8; 2 and 3, 36-37 extrema fewer for 23-28 more;
-// 5 and 6, 25 and 13 fewer for 24 and 12 more.)
+// corners off the samples, from chains close to their optimum: it takes this many steps.
+// (With 8, the steps after the corners have moved reshape the sides for the sum of
+// squares alone: on the shared data, 4 gave 44 curvature extrema fewer of 5,911 for 10
+// segments more of 9,950 over data_benchmark --variants=8; 2 and 3, 36-37 extrema fewer
+// for 23-28 more; 5 and 6, 25 and 13 fewer for 24 and 12 more.)
 constexpr int kPolishAcrossIterations = 4;
 // A step of stage 7's fit lowering the sum of squared distances by less than the square
 // of this fraction of the tolerance moves no point by a visible part of it: the fit stops
@@ -330,8 +330,8 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
 // corner where the sides meet; where that misses the tolerance, also with each corner's
 // point held at the corner (the tip of a rounded corner), starting from the first try's
 // chain, the better kept. Where the curve misses, the segments are chosen again too
-// (selectChain; else only hooks beside corners are collapsed, in fits of
-// kPolishAcrossIterations steps). A straight part stays a line unless the selection
+// (selectChain; else only hooks beside corners are collapsed and sides straightened, in
+// fits of kPolishAcrossIterations steps). A straight part stays a line unless the selection
 // bends it. Kept where it brings the curve closer to the points, counting the stray, or
 // keeps it within the tolerance. True if it changed the chains; false where a part has
 // no G2 chain.

@@ -221,22 +221,14 @@ TEST(SelectChain, StraightensTwoFlatSegmentsIntoALine) {
   EXPECT_EQ(line.turning(), 0.0);
   EXPECT_NEAR(line.length(), 100.0, 5.0);
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
-}
-
-// The same start where an earlier selection chose the segments and tried their runs as
-// lines already (SelectionOptions::straighten_runs off, as the fit across corners of
-// parts that keep the tolerance asks): no run becomes a line.
-TEST(SelectChain, LeavesRunsAloneWhereTheyWereTriedAlready) {
-  const std::vector<LaSegment> truth =
-      buildChain({0, 0}, 0.2, 0.02, {{-1.0, 80.0, 0.0}, {INFINITY, 100.0, 0.0}, {-1.0, 80.0, -0.02}});
-  std::vector<LaSegment> start = {truth[0]};
-  appendChain(start, truth[0].end(), truth[0].theta(80.0), 0.0, {{-1.0, 50.0, 0.0005}, {-1.0, 50.0, 0.0}, {-1.0, 80.0, -0.02}});
-  const std::vector<Vec2> points = sampleChain(truth, 80, kSigma, 5);
-  SelectionOptions options = selection();
-  options.straighten_runs = false;
-  const SelectionResult r = selectChain(start, points, {}, options);
-  EXPECT_EQ(r.straightenings, 0);
-  EXPECT_TRUE(std::none_of(r.fit.segments.begin(), r.fit.segments.end(), [](const LaSegment& s) { return s.isStraight(); }));
+  // Where an earlier selection chose the segments and tried their runs as lines already
+  // (SelectionOptions::straighten_runs off, as the fit across corners of parts that keep
+  // the tolerance asks), no run becomes a line.
+  SelectionOptions tried = selection();
+  tried.straighten_runs = false;
+  const SelectionResult left = selectChain(start, points, {}, tried);
+  EXPECT_EQ(left.straightenings, 0);
+  EXPECT_TRUE(std::none_of(left.fit.segments.begin(), left.fit.segments.end(), [](const LaSegment& s) { return s.isStraight(); }));
 }
 
 // Reversals of the curvature along a chain, read off dense samples (changes below
