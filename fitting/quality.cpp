@@ -17,6 +17,10 @@ constexpr double kEdgesPerCell = 4.0;
 // Edges either side of the previous point's nearest edge that give each point its first
 // bound (consecutive points are about one polyline edge apart).
 constexpr int kNeighbourEdges = 3;
+// Samples are placed to this fraction of the measure's resolution (their quadrature
+// needs no more: near a cusp it took seconds a measure to place them to 1e-10 of the
+// segment's length).
+constexpr double kSamplePrecision = 0.01;
 // Cells per axis at most (memory stays below a few MB for any curve).
 constexpr int kMaxCellsPerAxis = 512;
 
@@ -102,10 +106,14 @@ class EdgeGrid {
   double outsideBox(const Vec2& p) const { return (lo_ - p).cwiseMax(p - hi_).cwiseMax(Vec2::Zero()).norm(); }
 
   // Squared distance from p to edge e (a point edge: to its start).
+  // (in scalars: the instrumented fuzzing build runs small Eigen expressions slowly, and
+  // a hostile stroke's measures spent 40% of its fit here)
   double distance2(const Vec2& p, int e) const {
-    const Vec2 ap = p - poly_[e];
-    const double t = std::clamp(ap.dot(direction_[e]) * inverse_length2_[e], 0.0, 1.0);
-    return (ap - t * direction_[e]).squaredNorm();
+    const double ax = p.x() - poly_[e].x(), ay = p.y() - poly_[e].y();
+    const double dx = direction_[e].x(), dy = direction_[e].y();
+    const double t = std::clamp((ax * dx + ay * dy) * inverse_length2_[e], 0.0, 1.0);
+    const double rx = ax - t * dx, ry = ay - t * dy;
+    return rx * rx + ry * ry;
   }
 
   // Distance from p to the nearest edge, which is written to `edge`. `bound2` is the
@@ -177,10 +185,13 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
   for (const CurvePiece& piece : curve.pieces) {
     const LaSegment& seg = piece.segment;
     const double kmax = seg.maxAbsKappa();
-    const double h = std::sqrt(8.0 * resolution * diagonal / std::max(kmax, 1e-300));
+    // (a chord strays from its arc by at most kappa h^2 / 8, and by at most h / 2 whatever
+    // the curvature: a cusp's samples need be no closer than 2 resolution diagonal, where
+    // the sagitta alone put 100,000 on each of a hostile stroke's cusps, seconds a measure)
+    const double h = std::max(std::sqrt(8.0 * resolution * diagonal / std::max(kmax, 1e-300)), 2.0 * resolution * diagonal);
     const int n = ceilWithin(seg.length() / h, 7, 99999) + 1;
     smp.clear();
-    seg.sample(n, smp);
+    seg.sample(n, smp, 0.0, std::max(kDefaultRelativeTolerance, kSamplePrecision * resolution * diagonal / seg.length()));
     poly.insert(poly.end(), smp.point.begin(), smp.point.end());
   }
   std::vector<double> out(points.size(), INFINITY);
@@ -212,7 +223,7 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   for (const CurvePiece& piece : curve.pieces) {
     const int n = ceilWithin(piece.segment.length() / (kStrayStep * diagonal), 1, 99999) + 1;
     smp.clear();
-    piece.segment.sample(n, smp);
+    piece.segment.sample(n, smp, 0.0, std::max(kDefaultRelativeTolerance, kSamplePrecision * kStrayStep * diagonal / piece.segment.length()));
     samples.insert(samples.end(), smp.point.begin(), smp.point.end());
   }
   // (the first bound from as many edges either side as the points have per sample step)
