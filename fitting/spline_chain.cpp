@@ -24,7 +24,8 @@ namespace {
 // the next split point (below). G2 by construction; empty if some piece has no LA
 // segment. `length`: the spline's length between each piece's splits.
 std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
-                                 double min_alpha, double max_alpha, std::vector<double>& length) {
+                                 double min_alpha, double max_alpha, std::chrono::steady_clock::time_point deadline,
+                                 std::vector<double>& length) {
   constexpr int kSteps = 16;           // per piece, for its turning and length
   constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
   auto measure = [&](double t0, double t1, double& turning, double& length) {
@@ -89,6 +90,9 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
   Vec2 start = spline.point(spline.wrap(spans.front().t0));
   double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
   for (std::size_t i = 0; i < n; ++i) {
+    // (out of time: no chain; a hostile stroke's shots, each end of a segment with a cusp
+    // placed to 1e-10 of its length, took seconds past the budget)
+    if (std::chrono::steady_clock::now() >= deadline) return {};
     const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
     const bool free_end = kappa[(i + 1) % joints] != 0.0;
     const double end_sign = sign(turning[i]);
@@ -167,7 +171,7 @@ std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<P
   constexpr int kMaxHalvings = 6;
   for (int halvings = 0;; ++halvings) {
     std::vector<double> length;
-    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, length);
+    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, deadline, length);
     const std::size_t n = chain.size();
     std::size_t astray = n;
     for (std::size_t i = 0; i < n && astray == n; ++i)

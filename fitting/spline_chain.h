@@ -19,7 +19,7 @@ namespace la {
 /// `spans` updated). With `halve`, where a shot segment comes out far longer or shorter
 /// than the spline between its splits (it set off away from the points), its span is
 /// halved and the chain shot again, unless `deadline` has passed (the time budget).
-/// Empty if some piece has no LA segment.
+/// Empty if some piece has no LA segment, or `deadline` passes before the chain is shot.
 std::vector<LaSegment> chainFromSpline(
     const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed, double min_alpha, double max_alpha,
     bool halve, std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
