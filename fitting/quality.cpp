@@ -21,6 +21,11 @@ constexpr int kNeighbourEdges = 3;
 // needs no more: near a cusp it took seconds a measure to place them to 1e-10 of the
 // segment's length).
 constexpr double kSamplePrecision = 0.01;
+// The relative tolerance of a segment's samples that places them within kSamplePrecision
+// of `precision` (world units).
+double sampleTolerance(const LaSegment& segment, double precision) {
+  return std::max(kDefaultRelativeTolerance, kSamplePrecision * precision / segment.length());
+}
 // Cells per axis at most (memory stays below a few MB for any curve).
 constexpr int kMaxCellsPerAxis = 512;
 
@@ -191,7 +196,7 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
     const double h = std::max(std::sqrt(8.0 * resolution * diagonal / std::max(kmax, 1e-300)), 2.0 * resolution * diagonal);
     const int n = ceilWithin(seg.length() / h, 7, 99999) + 1;
     smp.clear();
-    seg.sample(n, smp, 0.0, std::max(kDefaultRelativeTolerance, kSamplePrecision * resolution * diagonal / seg.length()));
+    seg.sample(n, smp, 0.0, sampleTolerance(seg, resolution * diagonal));
     poly.insert(poly.end(), smp.point.begin(), smp.point.end());
   }
   std::vector<double> out(points.size(), INFINITY);
@@ -223,7 +228,7 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   for (const CurvePiece& piece : curve.pieces) {
     const int n = ceilWithin(piece.segment.length() / (kStrayStep * diagonal), 1, 99999) + 1;
     smp.clear();
-    piece.segment.sample(n, smp, 0.0, std::max(kDefaultRelativeTolerance, kSamplePrecision * kStrayStep * diagonal / piece.segment.length()));
+    piece.segment.sample(n, smp, 0.0, sampleTolerance(piece.segment, kStrayStep * diagonal));
     samples.insert(samples.end(), smp.point.begin(), smp.point.end());
   }
   // (the first bound from as many edges either side as the points have per sample step)
