@@ -9,6 +9,7 @@
 // where they disagree, so singular-but-integrable ends (an inflection end of an LA
 // segment, rho -> 0 or infinity) get their own small panels.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -91,13 +92,81 @@ double quadratureNorm(const V& v) {
   }
 }
 
+namespace detail {
+// A panel of the adaptive integrator: the 10-point rule on it (`whole`) and on its two
+// halves, and their disagreement, the panel's error estimate.
+template <class V>
+struct AdaptivePanel {
+  double lo, hi;
+  V whole, left, right;
+  double err;
+  int depth;
+  V fine() const { return V(left + right); }
+};
+
+template <class V, class F>
+AdaptivePanel<V> adaptivePanel(F& f, double lo, double hi, const V& whole, int depth) {
+  const double mid = 0.5 * (lo + hi);
+  AdaptivePanel<V> p{lo, hi, whole, integrateFixed<10>(f, lo, mid), integrateFixed<10>(f, mid, hi), 0.0, depth};
+  p.err = quadratureNorm(V(p.fine() - whole));
+  return p;
+}
+
+// The global rule (QUADPACK's strategy): the panel with the largest error is halved until
+// the errors sum to abs_tol. Panels at max_depth stay as they are.
+template <class F, class V>
+QuadratureResult<V> integrateGlobal(F& f, double a, double b, const V& first, double abs_tol, int max_depth,
+                                    int max_panels) {
+  auto smaller = [](const AdaptivePanel<V>& x, const AdaptivePanel<V>& y) { return x.err < y.err; };
+  std::vector<AdaptivePanel<V>> open, done;  // `open`: a max-heap on err
+  open.push_back(adaptivePanel(f, a, b, first, 0));
+  double total = open.front().err;
+  while (total > abs_tol && !open.empty() && static_cast<int>(open.size() + done.size()) < max_panels) {
+    std::pop_heap(open.begin(), open.end(), smaller);
+    const AdaptivePanel<V> p = open.back();
+    open.pop_back();
+    if (p.depth >= max_depth) {
+      done.push_back(p);
+      continue;
+    }
+    const double mid = 0.5 * (p.lo + p.hi);
+    for (auto half : {adaptivePanel(f, p.lo, mid, p.left, p.depth + 1), adaptivePanel(f, mid, p.hi, p.right, p.depth + 1)}) {
+      total += half.err;
+      open.push_back(half);
+      std::push_heap(open.begin(), open.end(), smaller);
+    }
+    total -= p.err;
+  }
+  QuadratureResult<V> result;
+  result.value = V(first * 0.0);
+  for (const auto* panels : {&open, &done})
+    for (const AdaptivePanel<V>& p : *panels) {
+      result.value += p.fine();
+      result.error_estimate += p.err;
+      ++result.panels;
+    }
+  result.converged = result.error_estimate <= abs_tol;
+  return result;
+}
+}  // namespace detail
+
 /// Adaptive Gauss-Legendre on [a, b] to an absolute tolerance: each panel is accepted
 /// when the 10-point rule on it and on its two halves agree within tol * panel/(b-a).
 /// The result is the finer estimate. max_depth bounds the bisection (2^-60 of the
 /// interval is below double resolution anyway) and max_panels the total work, for a
 /// tolerance below the rounding noise; hitting either clears `converged`.
+///
+/// That local rule asks every panel for the same relative accuracy. Near a point where
+/// the integrand is nearly singular it cannot get it: the rounding of the nodes' arguments,
+/// times a huge derivative, is noise above the panel's share (a cusp of an LA segment,
+/// curvature 1e12 times its start's, bisected 60 levels deep all along its last 1e-7 of
+/// length, 20,000 panels for each of its positions). So where the local rule needs more
+/// than kLocalPanels panels (the shared data's curves need at most 32), the integral is
+/// done again by the global rule (detail::integrateGlobal), whose noise is its own
+/// panels' error: a few tens of panels there.
 template <class F>
 auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth = 60, int max_panels = 20000) {
+  constexpr int kLocalPanels = 128;
   using V = decltype(integrateFixed<10>(f, a, b));
   QuadratureResult<V> result;
   const V first = integrateFixed<10>(f, a, b);
@@ -121,7 +190,10 @@ auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth 
     const V fine = left + right;
     const double err = quadratureNorm(V(fine - p.whole));
     const double allowed = abs_tol * (p.hi - p.lo) / total;
-    if (err <= allowed || p.depth >= max_depth || result.panels + static_cast<int>(stack.size()) >= max_panels) {
+    const int panels = result.panels + static_cast<int>(stack.size());
+    if (err > allowed && panels >= kLocalPanels && kLocalPanels < max_panels)
+      return detail::integrateGlobal(f, a, b, first, abs_tol, max_depth, max_panels);
+    if (err <= allowed || p.depth >= max_depth || panels >= max_panels) {
       if (err > allowed) result.converged = false;
       result.value += fine;
       result.error_estimate += err;

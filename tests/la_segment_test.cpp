@@ -514,6 +514,26 @@ TEST(LaSegmentTest, ReversedTraversesTheSameCurveBackwards) {
   }
 }
 
+TEST(LaSegmentTest, CuspEndPositionIsExactBothWays) {
+  // A segment of a fuzzed stroke's chain (alpha 0.5): almost straight, then turning in
+  // its last 1e-9 of length, its end curvature 3e17 times its start's. Near that end the
+  // rounding of the quadrature nodes, times the curvature, made the tangent noisy at the
+  // scale of the tolerance, so that each position took 20,000 panels and came back
+  // unconverged (the quadrature of its tangent, below, as position() does it). Its
+  // reverse, whose sharp end is at its start where the nodes are exact, must come back to
+  // the start within the two positions' tolerances.
+  const double length = 3.5751400602179983e-4;
+  const LaSegment seg(0.5, length, Vec2(1.0, 2.0), 0.4, 8.34555e-06, 2.3132e+12);
+  EXPECT_GT(std::abs(seg.turning()), 1.0) << describe(seg);
+  const LaSegment r = seg.reversed();
+  expectNear(r.end(), seg.start(), 2 * kDefaultRelativeTolerance * length, describe(seg) + " there and back");
+  expectNear(seg.end(), seg.end(kTightTolerance), 2 * kDefaultRelativeTolerance * length, describe(seg) + " end");
+  const auto tangent = integrateAdaptive([&](double s) { return seg.tangent(s); }, 0.0, length,
+                                         kDefaultRelativeTolerance * length);
+  EXPECT_TRUE(tangent.converged);
+  EXPECT_LE(tangent.panels, 200);
+}
+
 // ---------------------------------------------------------------------------------
 // Sampling.
 
