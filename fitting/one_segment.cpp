@@ -232,11 +232,22 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   starts.insert(starts.begin(), profiled.begin(), profiled.end());
   // (each start as it is, then with its end shot onto the last point: a spiral's far
   // turns follow its end, but a shot from a poor start curvature bends the law wrongly)
+  // (a start already among the tries, to rounding, is not tried again: the fit from it is
+  // the same. The shots of different starts solve one problem, the end onto the last
+  // point, and most land on one segment: on spirals, a third to a half of the tries.)
   std::vector<LaSegment> tries;
-  for (const auto& [miss, guess] : starts) {
+  auto add = [&](const LaSegment& guess) {
+    auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); };
+    for (const LaSegment& t : tries)
+      if (near(t.alpha(), guess.alpha()) && near(t.length(), guess.length()) && near(t.kappaStart(), guess.kappaStart()) &&
+          near(t.kappaEnd(), guess.kappaEnd()) && t.theta0() == guess.theta0() && t.start() == guess.start())
+        return;
     tries.push_back(guess);
+  };
+  for (const auto& [miss, guess] : starts) {
+    add(guess);
     if (const auto shot = shootSegment(turning, p.front(), theta0, k0, k1, guess.alpha(), so.fit.min_alpha, so.fit.max_alpha, p.back()))
-      tries.push_back(*shot);
+      add(*shot);
   }
   std::optional<ChainFitResult> closest;  // (the first within the tolerance ends the search)
   for (const LaSegment& guess : tries) {
