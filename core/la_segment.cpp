@@ -228,6 +228,37 @@ Vec2 LaSegment::integratePositionAdaptive(double s0, double s1, double abs_tol) 
   return integrateAdaptive(tangent_at, s0, s1, abs_tol).value;
 }
 
+Vec2 LaSegment::integratePositionInSteps(double s0, double s1, double abs_tol) const {
+  // Each step starts from the exact theta and kappa at its start and is the longest that
+  // the series holds on, halving from twice the last one: a few steps where adaptive
+  // quadrature evaluated the tangent 30 to 70 times (a third of the paper-only fit's time,
+  // in the alpha search's samples). Steps shorter than kMinStep of the interval (towards a
+  // cusp) leave the rest to the adaptive rule.
+  constexpr double kMinStep = 1.0 / 256.0;
+  Vec2 sum = Vec2::Zero();
+  double a = s0, h = s1 - s0;
+  while (a < s1) {
+    double th, k;
+    thetaKappa(a, th, k);
+    const Vec2 tangent = unitVector(th);
+    PanelStep step;
+    for (h = std::min(h, s1 - a); !panelBySeries(a, h, k, tangent, step); h *= 0.5)
+      if (h < kMinStep * (s1 - s0)) return sum + integratePositionAdaptive(a, s1, abs_tol * (s1 - a) / (s1 - s0));
+    if (step.simpson) {
+      double c, sn;
+      smallSinCos(step.turning, c, sn);
+      const Vec2 mid(step.mid_cos * tangent.x() - step.mid_sin * tangent.y(), step.mid_sin * tangent.x() + step.mid_cos * tangent.y());
+      const Vec2 end(c * tangent.x() - sn * tangent.y(), sn * tangent.x() + c * tangent.y());
+      sum += (h / 6.0) * (tangent + 4.0 * mid + end);
+    } else {
+      sum += step.delta;
+    }
+    a = h >= s1 - a ? s1 : a + h;
+    h *= 2.0;
+  }
+  return sum;
+}
+
 Vec2 LaSegment::position(double s, double relative_tolerance) const {
   if (s == 0.0) return start_;
   if (law_ == Law::kConstant) {  // exact chord of a circular arc (or a line)
@@ -416,7 +447,7 @@ void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relativ
       } else if (series) {
         delta = step.delta;
       } else if (!panelNearInflection(s_prev, s, delta)) {
-        delta = integratePositionAdaptive(s_prev, s, panel_tol);
+        delta = integratePositionInSteps(s_prev, s, panel_tol);
       }
       p += delta;
     }

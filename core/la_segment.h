@@ -105,6 +105,9 @@ class LaSegment {
   double v(double s) const;
   double logV(double s) const;
   Vec2 integratePositionAdaptive(double s0, double s1, double abs_tol) const;
+  // The position change over [s0, s1] where one panel of the sampler turns or bends too
+  // far for the series: in steps on which it holds, else by adaptive quadrature.
+  Vec2 integratePositionInSteps(double s0, double s1, double abs_tol) const;
   // One panel of the sampler; returns false where the series is not accurate enough.
   struct PanelStep {
     double turning;      // theta change

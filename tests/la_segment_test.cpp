@@ -540,7 +540,8 @@ TEST(LaSegmentTest, CuspEndPositionIsExactBothWays) {
 TEST(LaSegmentTest, SamplesAgreeWithPointEvaluation) {
   // sample(n): s uniform with s.back() == L exactly; every point within 1e-10 L of
   // position(s, 1e-13); tangent, theta and kappa equal tangent(s), theta(s), kappa(s)
-  // (1e-14). Cases include inflection ends and segments turning several radians.
+  // (1e-14). Cases include inflection ends and segments turning several radians (with
+  // n = 2 and 7 a panel turns radians: beyond the series, it is integrated in steps).
   constexpr double kPosRelTol = 1e-10;
   struct Case {
     double alpha, k0, k1, length;
