@@ -159,7 +159,7 @@ QuadratureResult<V> integrateGlobal(F& f, double a, double b, const V& first, do
 /// That local rule asks every panel for the same relative accuracy. Near a point where
 /// the integrand is nearly singular it cannot get it: the rounding of the nodes' arguments,
 /// times a huge derivative, is noise above the panel's share (a cusp of an LA segment,
-/// curvature 1e12 times its start's, bisected 60 levels deep all along its last 1e-7 of
+/// curvature 3e17 times its start's, bisected 60 levels deep all along its last 1e-7 of
 /// length, 20,000 panels for each of its positions). So where the local rule needs more
 /// than kLocalPanels panels (the shared data's curves need at most 32), the integral is
 /// done again by the global rule (detail::integrateGlobal), whose noise is its own
