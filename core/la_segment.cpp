@@ -64,6 +64,9 @@ inline void tinySinCos(double a, double& c, double& s) {
   s = a * (1.0 + a2 * (s3 + a2 * s5));
 }
 
+// v turned by the angle whose cosine and sine are c and s.
+inline Vec2 rotated(const Vec2& v, double c, double s) { return {c * v.x() - s * v.y(), s * v.x() + c * v.y()}; }
+
 }  // namespace
 
 void CurveSamples::clear() {
@@ -228,15 +231,21 @@ Vec2 LaSegment::integratePositionAdaptive(double s0, double s1, double abs_tol) 
   return integrateAdaptive(tangent_at, s0, s1, abs_tol).value;
 }
 
+// (inline: the sampler's hot loop calls it)
+inline Vec2 LaSegment::PanelStep::simpsonDelta(double h, const Vec2& tangent_start, const Vec2& tangent_end) const {
+  return (h / 6.0) * (tangent_start + 4.0 * rotated(tangent_start, mid_cos, mid_sin) + tangent_end);
+}
+
 Vec2 LaSegment::integratePositionInSteps(double s0, double s1, double abs_tol) const {
   // Each step starts from the exact theta and kappa at its start and is the longest that
-  // the series holds on, halving from twice the last one: a few steps where adaptive
-  // quadrature evaluated the tangent 30 to 70 times (29% of the paper-only fit of a
-  // 1,000-point stroke, in the alpha search's samples). Steps shorter than kMinStep of the
-  // interval (towards a cusp) leave the rest to the adaptive rule.
+  // the series holds on, halving from twice the last one (the first from half the panel,
+  // which the caller found too long): a few steps where adaptive quadrature evaluated the
+  // tangent 30 to 70 times (29% of the paper-only fit of a 1,000-point stroke, in the
+  // alpha search's samples). Steps shorter than kMinStep of the interval (towards a cusp)
+  // leave the rest to the adaptive rule.
   constexpr double kMinStep = 1.0 / 256.0;
   Vec2 sum = Vec2::Zero();
-  double a = s0, h = s1 - s0;
+  double a = s0, h = 0.5 * (s1 - s0);
   while (a < s1) {
     double th, k;
     thetaKappa(a, th, k);
@@ -247,9 +256,7 @@ Vec2 LaSegment::integratePositionInSteps(double s0, double s1, double abs_tol) c
     if (step.simpson) {
       double c, sn;
       smallSinCos(step.turning, c, sn);
-      const Vec2 mid(step.mid_cos * tangent.x() - step.mid_sin * tangent.y(), step.mid_sin * tangent.x() + step.mid_cos * tangent.y());
-      const Vec2 end(c * tangent.x() - sn * tangent.y(), sn * tangent.x() + c * tangent.y());
-      sum += (h / 6.0) * (tangent + 4.0 * mid + end);
+      sum += step.simpsonDelta(h, tangent, rotated(tangent, c, sn));
     } else {
       sum += step.delta;
     }
@@ -428,7 +435,7 @@ void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relativ
         k = k_exact * ratio;
         double c, sn;
         smallSinCos(turned, c, sn);
-        tangent = Vec2(c * tangent_exact.x() - sn * tangent_exact.y(), sn * tangent_exact.x() + c * tangent_exact.y());
+        tangent = rotated(tangent_exact, c, sn);
       } else {
         thetaKappa(s, th, k);
         tangent = unitVector(th);
@@ -441,9 +448,7 @@ void LaSegment::sample(int n, CurveSamples& out, double s_offset, double relativ
       }
       Vec2 delta;
       if (series && step.simpson) {
-        const Vec2 mid(step.mid_cos * tangent_start.x() - step.mid_sin * tangent_start.y(),
-                       step.mid_sin * tangent_start.x() + step.mid_cos * tangent_start.y());
-        delta = ((s - s_prev) / 6.0) * (tangent_start + 4.0 * mid + tangent);
+        delta = step.simpsonDelta(s - s_prev, tangent_start, tangent);
       } else if (series) {
         delta = step.delta;
       } else if (!panelNearInflection(s_prev, s, delta)) {

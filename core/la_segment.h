@@ -105,8 +105,8 @@ class LaSegment {
   double v(double s) const;
   double logV(double s) const;
   Vec2 integratePositionAdaptive(double s0, double s1, double abs_tol) const;
-  // The position change over [s0, s1] where one panel of the sampler turns or bends too
-  // far for the series: in steps on which it holds, else by adaptive quadrature.
+  // The position change over [s0, s1], a panel of the sampler that turns or bends too
+  // far for the series: in shorter steps on which it holds, else by adaptive quadrature.
   Vec2 integratePositionInSteps(double s0, double s1, double abs_tol) const;
   // One panel of the sampler; returns false where the series is not accurate enough.
   struct PanelStep {
@@ -117,6 +117,8 @@ class LaSegment {
     bool simpson;
     double mid_cos, mid_sin;
     Vec2 delta;          // position change over the panel (4-point Gauss-Legendre)
+    // Simpson's position change over a panel of length h, from its end tangents.
+    Vec2 simpsonDelta(double h, const Vec2& tangent_start, const Vec2& tangent_end) const;
   };
   bool panelBySeries(double s0, double h, double kappa_start, const Vec2& tangent_start, PanelStep& step) const;
   // The position change over [s0, s1] near an inflection end (power law with v = 0 at

@@ -101,6 +101,7 @@ struct AdaptivePanel {
   V whole, left, right;
   double err;
   int depth;
+  double mid() const { return 0.5 * (lo + hi); }
   V fine() const { return V(left + right); }
 };
 
@@ -129,8 +130,7 @@ QuadratureResult<V> integrateGlobal(F& f, double a, double b, const V& first, do
       done.push_back(p);
       continue;
     }
-    const double mid = 0.5 * (p.lo + p.hi);
-    for (auto half : {adaptivePanel(f, p.lo, mid, p.left, p.depth + 1), adaptivePanel(f, mid, p.hi, p.right, p.depth + 1)}) {
+    for (auto half : {adaptivePanel(f, p.lo, p.mid(), p.left, p.depth + 1), adaptivePanel(f, p.mid(), p.hi, p.right, p.depth + 1)}) {
       total += half.err;
       open.push_back(half);
       std::push_heap(open.begin(), open.end(), smaller);
@@ -174,33 +174,29 @@ auto integrateAdaptive(F&& f, double a, double b, double abs_tol, int max_depth 
   result.converged = true;
   if (!(b > a)) return result;
   const double total = b - a;
-  struct Panel {
+  struct Pending {  // (a panel not yet split: its rule on the whole is known)
     double lo, hi;
     V whole;
     int depth;
   };
-  std::vector<Panel> stack;
+  std::vector<Pending> stack;
   stack.push_back({a, b, first, 0});
   while (!stack.empty()) {
-    const Panel p = stack.back();
+    const Pending q = stack.back();
     stack.pop_back();
-    const double mid = 0.5 * (p.lo + p.hi);
-    const V left = integrateFixed<10>(f, p.lo, mid);
-    const V right = integrateFixed<10>(f, mid, p.hi);
-    const V fine = left + right;
-    const double err = quadratureNorm(V(fine - p.whole));
+    const detail::AdaptivePanel<V> p = detail::adaptivePanel(f, q.lo, q.hi, q.whole, q.depth);
     const double allowed = abs_tol * (p.hi - p.lo) / total;
     const int panels = result.panels + static_cast<int>(stack.size());
-    if (err > allowed && panels >= kLocalPanels && kLocalPanels < max_panels)
+    if (p.err > allowed && panels >= kLocalPanels && kLocalPanels < max_panels)
       return detail::integrateGlobal(f, a, b, first, abs_tol, max_depth, max_panels);
-    if (err <= allowed || p.depth >= max_depth || panels >= max_panels) {
-      if (err > allowed) result.converged = false;
-      result.value += fine;
-      result.error_estimate += err;
+    if (p.err <= allowed || p.depth >= max_depth || panels >= max_panels) {
+      if (p.err > allowed) result.converged = false;
+      result.value += p.fine();
+      result.error_estimate += p.err;
       ++result.panels;
     } else {
-      stack.push_back({mid, p.hi, right, p.depth + 1});
-      stack.push_back({p.lo, mid, left, p.depth + 1});
+      stack.push_back({p.mid(), p.hi, p.right, p.depth + 1});
+      stack.push_back({p.lo, p.mid(), p.left, p.depth + 1});
     }
   }
   return result;
