@@ -104,16 +104,16 @@ bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) 
   return largestKappa(segments) * tolerance > kTighterThanTolerance;
 }
 
-// Where the curve bends tighter than the tolerance: at a G2 joint, the joint; towards a
-// corner or the curve's end, where the segment's |kappa| reaches 1 / tolerance (the side
-// starts to curl into the corner there, which then belongs there).
-std::vector<Vec2> tightBends(const FitResult& r) {
+// Where the curve bends tighter than `factor` / tolerance: at a G2 joint, the joint;
+// towards a corner or the curve's end, where the segment's |kappa| reaches 1 / tolerance
+// (the side starts to curl into the corner there, which then belongs there).
+std::vector<Vec2> tightBends(const FitResult& r, double factor = kTighterThanTolerance) {
   std::vector<Vec2> at;
   const std::vector<CurvePiece>& pieces = r.curve.pieces;
   const double limit = 1.0 / r.tolerance;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const LaSegment& seg = pieces[i].segment;
-    if (!(seg.maxAbsKappa() * r.tolerance > kTighterThanTolerance)) continue;
+    if (!(seg.maxAbsKappa() * r.tolerance > factor)) continue;
     const bool at_end = std::abs(seg.kappaEnd()) >= std::abs(seg.kappaStart());
     const bool last = i + 1 == pieces.size();
     const bool joint = at_end ? (!last || r.curve.closed) && !pieces[last ? 0 : i + 1].corner
@@ -124,7 +124,7 @@ std::vector<Vec2> tightBends(const FitResult& r) {
     }
     // (|kappa| is monotone along the segment: bisection for where it reaches the limit)
     double lo = 0.0, hi = seg.length();  // loose at lo, tight at hi (towards the tight end)
-    auto tight = [&](double s) { return std::abs(seg.kappa(at_end ? s : seg.length() - s)) > limit; };
+    auto tight = [&](double s) { return std::abs(seg.kappa(at_end ? s : seg.length() - s)) > factor * limit; };
     if (tight(lo)) hi = lo;
     for (int k = 0; k < 50 && hi > lo; ++k) (tight(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
     at.push_back(seg.position(at_end ? hi : seg.length() - hi));
@@ -476,36 +476,57 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     const double allowed = kStrayWarning * f.tolerance + medianStep(f.cleaned.points);
     return f.quality.max_dev > f.tolerance || strayFromPoints(f.curve, f.cleaned.points, f.quality.diagonal) > allowed;
   };
-  // (only where some joint is on the bound: elsewhere the fit without it is the same)
-  const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
-  if (polishing && bounded && !r.cleaned.straight && !r.out_of_time && !r.over_polish_limit && misses(r)) {
-    FitResult free = fitOnce(stroke, options, hook_tolerance, RadiusBound::kFree, start);
-    if (!misses(free)) r = std::move(free);
-  }
-  // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
-  // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
-  // again with the bound, in about the time the fit took so far: kept where it bends less
-  // tightly and keeps the tolerance (or misses it by no more, or by kCorneredMiss).
   // (a curve bending tighter than the tolerance that another fit may mend)
   auto mendable = [&](const FitResult& f) {
     return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit &&
            f.quality.max_abs_kappa * f.tolerance > kTighterThanTolerance;
   };
-  std::vector<Vec2> corners_at;
-  for (int round = 0; round < kTightBendRounds && mendable(r); ++round) {
-    const std::vector<Vec2> more = tightBends(r);
-    CleanStroke with = r.cleaned;  // (where no corner can go, no fit is tried)
-    if (std::none_of(more.begin(), more.end(), [&](const Vec2& q) { return addCorner(with, cornerNear(with, q)); })) break;
-    corners_at.insert(corners_at.end(), more.begin(), more.end());
+  // The stroke fitted again with corners at `bends` as well as at `corners_at`, with the
+  // bound, in about the time the fit took so far; nullopt where no corner can go there.
+  auto corneredAt = [&](const FitResult& from, const std::vector<Vec2>& corners_at,
+                        const std::vector<Vec2>& bends) -> std::optional<FitResult> {
+    CleanStroke with = from.cleaned;  // (where no corner can go, no fit is tried)
+    if (std::none_of(bends.begin(), bends.end(), [&](const Vec2& q) { return addCorner(with, cornerNear(with, q)); }))
+      return std::nullopt;
+    std::vector<Vec2> at = corners_at;
+    at.insert(at.end(), bends.begin(), bends.end());
     FitOptions bounded_time = options;
     const double spent = msSince(start);
     bounded_time.time_budget_ms = options.time_budget_ms > 0.0 ? std::min(options.time_budget_ms, 2.0 * spent) : 2.0 * spent;
-    FitResult cornered = fitOnce(stroke, bounded_time, hook_tolerance, RadiusBound::kBoundThenFree, start, corners_at);
-    if (cornered.out_of_time || !cornered.g2.usable() ||
-        cornered.quality.max_dev > std::max(kCorneredMiss * cornered.tolerance, r.quality.max_dev) ||
-        !(cornered.quality.max_abs_kappa < r.quality.max_abs_kappa))
+    return fitOnce(stroke, bounded_time, hook_tolerance, RadiusBound::kBoundThenFree, start, at);
+  };
+  std::vector<Vec2> corners_at;
+  // (only where some joint is on the bound: elsewhere the fit without it is the same)
+  const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
+  if (polishing && bounded && !r.cleaned.straight && !r.out_of_time && !r.over_polish_limit && misses(r)) {
+    // The bends on the bound made corners first: where that fit keeps the tolerance and
+    // bends no tighter than it, the fit without the bound is not needed. It would bend
+    // tighter than the tolerance where the bound held, and the rounds below would make
+    // those bends corners, a whole fit later (a drawn star's tips: 180 of its 270 ms).
+    const std::vector<Vec2> on_bound = tightBends(r, kOnTheBound);
+    std::optional<FitResult> cornered = corneredAt(r, corners_at, on_bound);
+    if (cornered && !cornered->out_of_time && cornered->g2.usable() && !misses(*cornered) && !mendable(*cornered)) {
+      r = std::move(*cornered);
+      corners_at = on_bound;
+    } else {
+      FitResult free = fitOnce(stroke, options, hook_tolerance, RadiusBound::kFree, start);
+      if (!misses(free)) r = std::move(free);
+    }
+  }
+  // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
+  // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
+  // again with the bound, in about the time the fit took so far: kept where it bends less
+  // tightly and keeps the tolerance (or misses it by no more, or by kCorneredMiss).
+  for (int round = 0; round < kTightBendRounds && mendable(r); ++round) {
+    const std::vector<Vec2> more = tightBends(r);
+    std::optional<FitResult> cornered = corneredAt(r, corners_at, more);
+    if (!cornered) break;
+    corners_at.insert(corners_at.end(), more.begin(), more.end());
+    if (cornered->out_of_time || !cornered->g2.usable() ||
+        cornered->quality.max_dev > std::max(kCorneredMiss * cornered->tolerance, r.quality.max_dev) ||
+        !(cornered->quality.max_abs_kappa < r.quality.max_abs_kappa))
       break;
-    r = std::move(cornered);
+    r = std::move(*cornered);
   }
   // Where it still does (a part that missed the tolerance on the bound was fitted again
   // without it, as above, also after its tight bends became corners: a capped stroke),
