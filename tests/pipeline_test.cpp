@@ -850,6 +850,22 @@ TEST(PipelineFairness, ABendUnderTheCornerAngleIsNoTighterThanTheToleranceTells)
   }
 }
 
+// The crossbar of a drawn H (MMG's stylus set, H-01's second stroke) with noise of 1.2
+// units: 12 samples, the first a pen-down hook. Fitted with the bound on the radius, it
+// missed the tolerance with a joint on the bound; fitted again without the bound it
+// missed too, so the curve kept the first miss (1.6 tolerances, warned). The bend on the
+// bound made a corner keeps the tolerance, and nothing bends tighter than it.
+TEST(PipelineCorners, ABendOnTheBoundWhereTheFitMissesBecomesACorner) {
+  const std::vector<Vec2> points = {{36.057, 99.816}, {58.523, 90.391}, {68.138, 86.135}, {71.919, 89.959},
+                                    {79.402, 88.123}, {82.655, 85.613}, {87.014, 84.172}, {93.353, 83.209},
+                                    {96.389, 83.349}, {103.054, 84.150}, {109.229, 83.541}, {108.211, 83.554}};
+  const FitResult r = fitStroke(strokeOf(points));
+  EXPECT_LE(r.quality.max_dev, r.tolerance) << describeFit(r);
+  EXPECT_GE(r.quality.min_radius, (1.0 - 1e-6) * r.tolerance);
+  EXPECT_GE(r.quality.corners, 1);
+  expectGaps(r);
+}
+
 // A caret drawn fast: two bowed arms meeting at a corner that falls between samples
 // (about 4.7 units apart, the nearest 1.3 to 2 units from the corner, more than the
 // tolerance), with noise of 0.1% of the diagonal. Stage 7 fits both arms as one chain
