@@ -55,9 +55,10 @@
 // start, and for pixel-quantized strokes stages 2-6 on the points with their stairs
 // smoothed a third; the best result stays (G2 first, then the cap, then the deviation).
 // Stage 7 bends no tighter than the tolerance; where that costs the tolerance (a tight
-// bend the clean-up did not take for a corner), the fit runs again without the bound,
-// then with corners at the bends that came out tighter, and, where one still does (a
-// capped stroke's part), with those corners and the bound everywhere: the bound wins.
+// bend the clean-up did not take for a corner), the fit runs again with corners at the
+// bends on the bound. Where that misses, or still bends tighter, it runs without the
+// bound, then with corners at the bends that came out tighter, and, where one still does
+// (a capped stroke's part), with those corners and the bound everywhere: the bound wins.
 
 #include <optional>
 #include <string>
@@ -127,7 +128,7 @@ struct PieceReport {
 /// its solves happen inside alpha_ms (feasibility of each piece's alpha) and g2_ms
 /// (the first build of the chain and every rebuild while the joints move).
 /// The stages are those of the fit returned; total_ms also counts a first fit it
-/// replaced (the rerun without the bound on the radius, fitStroke).
+/// replaced (the reruns with corners at tight bends or without the bound, fitStroke).
 struct StageTimings {
   double cleanup_ms = 0, smoothing_ms = 0, segmentation_ms = 0, alpha_ms = 0, g2_ms = 0, polish_ms = 0,
          quality_ms = 0, total_ms = 0;
