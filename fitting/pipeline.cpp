@@ -446,6 +446,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     r.warnings.push_back("the curve misses the tolerance: it passes up to " + std::to_string(r.quality.max_dev) +
                          " from the points, the tolerance is " + std::to_string(r.tolerance) +
                          (cap >= 0 ? " (the cap of " + std::to_string(cap) + " extrema per smooth part comes first)" : ""));
+  // (stage 7 bounds the radius: a curve that still bends tighter, from a chain stage 7
+  // could not replace, breaks DESIGN.md section 6's promise, and says so)
+  if (polishing && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance)
+    r.warnings.push_back("the curve bends tighter than the tolerance: its tightest radius is " +
+                         std::to_string(r.quality.min_radius) + ", the tolerance is " + std::to_string(r.tolerance));
   r.out_of_time = context.outOfTime();
   if (r.out_of_time)
     r.warnings.push_back("the time budget of " + std::to_string(options.time_budget_ms) + " ms ran out: " +

@@ -866,6 +866,28 @@ TEST(PipelineCorners, ABendOnTheBoundWhereTheFitMissesBecomesACorner) {
   expectGaps(r);
 }
 
+// Stage 7 bounds the radius, but a curve can still bend tighter than the tolerance
+// where a part keeps a chain stage 7 did not make (here 12 samples of a noisy Omniglot
+// stroke, Early_Aramaic 0251_13 with noise of 1.2 units: when written, a bend of 0.18
+// tolerances, from stage 6's chain kept as closer to the points than stage 7's). The
+// result says so exactly where it does (the second stroke, the H's crossbar above, bends
+// no tighter), as it says a miss of the tolerance.
+TEST(PipelineCorners, ACurveThatBendsTighterThanTheToleranceSaysSo) {
+  const std::vector<std::vector<Vec2>> strokes = {
+      {{59.985, -39.906}, {60.356, -39.374}, {58.792, -41.453}, {55.971, -43.413}, {55.199, -44.842}, {57.575, -44.298},
+       {58.450, -47.843}, {54.095, -49.104}, {53.599, -47.077}, {52.142, -49.695}, {52.550, -49.419}, {52.499, -52.586}},
+      {{36.057, 99.816}, {58.523, 90.391}, {68.138, 86.135}, {71.919, 89.959}, {79.402, 88.123}, {82.655, 85.613},
+       {87.014, 84.172}, {93.353, 83.209}, {96.389, 83.349}, {103.054, 84.150}, {109.229, 83.541}, {108.211, 83.554}}};
+  for (std::size_t k = 0; k < strokes.size(); ++k) {
+    SCOPED_TRACE("stroke " + std::to_string(k));
+    const FitResult r = fitStroke(strokeOf(strokes[k]));
+    const bool warned = std::any_of(r.warnings.begin(), r.warnings.end(), [](const std::string& w) {
+      return w.find("bends tighter than the tolerance") != std::string::npos;
+    });
+    EXPECT_EQ(warned, r.quality.min_radius < (1.0 - 1e-6) * r.tolerance) << describeFit(r);
+  }
+}
+
 // A caret drawn fast: two bowed arms meeting at a corner that falls between samples
 // (about 4.7 units apart, the nearest 1.3 to 2 units from the corner, more than the
 // tolerance), with noise of 0.1% of the diagonal. Stage 7 fits both arms as one chain
