@@ -855,11 +855,11 @@ TEST(PipelineFairness, ABendUnderTheCornerAngleIsNoTighterThanTheToleranceTells)
 // missed the tolerance with a joint on the bound; fitted again without the bound it
 // missed too, so the curve kept the first miss (1.6 tolerances, warned). The bend on the
 // bound made a corner keeps the tolerance, and nothing bends tighter than it.
+const std::vector<Vec2> kNoisyCrossbar = {{36.057, 99.816}, {58.523, 90.391}, {68.138, 86.135}, {71.919, 89.959},
+                                          {79.402, 88.123}, {82.655, 85.613}, {87.014, 84.172}, {93.353, 83.209},
+                                          {96.389, 83.349}, {103.054, 84.150}, {109.229, 83.541}, {108.211, 83.554}};
 TEST(PipelineCorners, ABendOnTheBoundWhereTheFitMissesBecomesACorner) {
-  const std::vector<Vec2> points = {{36.057, 99.816}, {58.523, 90.391}, {68.138, 86.135}, {71.919, 89.959},
-                                    {79.402, 88.123}, {82.655, 85.613}, {87.014, 84.172}, {93.353, 83.209},
-                                    {96.389, 83.349}, {103.054, 84.150}, {109.229, 83.541}, {108.211, 83.554}};
-  const FitResult r = fitStroke(strokeOf(points));
+  const FitResult r = fitStroke(strokeOf(kNoisyCrossbar));
   EXPECT_LE(r.quality.max_dev, r.tolerance) << describeFit(r);
   EXPECT_GE(r.quality.min_radius, (1.0 - 1e-6) * r.tolerance);
   EXPECT_GE(r.quality.corners, 1);
@@ -876,8 +876,7 @@ TEST(PipelineCorners, ACurveThatBendsTighterThanTheToleranceSaysSo) {
   const std::vector<std::vector<Vec2>> strokes = {
       {{59.985, -39.906}, {60.356, -39.374}, {58.792, -41.453}, {55.971, -43.413}, {55.199, -44.842}, {57.575, -44.298},
        {58.450, -47.843}, {54.095, -49.104}, {53.599, -47.077}, {52.142, -49.695}, {52.550, -49.419}, {52.499, -52.586}},
-      {{36.057, 99.816}, {58.523, 90.391}, {68.138, 86.135}, {71.919, 89.959}, {79.402, 88.123}, {82.655, 85.613},
-       {87.014, 84.172}, {93.353, 83.209}, {96.389, 83.349}, {103.054, 84.150}, {109.229, 83.541}, {108.211, 83.554}}};
+      kNoisyCrossbar};
   for (std::size_t k = 0; k < strokes.size(); ++k) {
     SCOPED_TRACE("stroke " + std::to_string(k));
     const FitResult r = fitStroke(strokeOf(strokes[k]));
