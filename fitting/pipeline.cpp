@@ -104,6 +104,9 @@ bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) 
   return largestKappa(segments) * tolerance > kTighterThanTolerance;
 }
 
+// Whether a fit's curve bends tighter than its tolerance, by its measured figures.
+bool bendsTighterThanTolerance(const FitResult& f) { return f.quality.max_abs_kappa * f.tolerance > kTighterThanTolerance; }
+
 // Where the curve bends tighter than `factor` / tolerance: at a G2 joint, the joint;
 // towards a corner or the curve's end, where the segment's |kappa| reaches that (the
 // side starts to curl into the corner there, which then belongs there).
@@ -448,7 +451,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
                          (cap >= 0 ? " (the cap of " + std::to_string(cap) + " extrema per smooth part comes first)" : ""));
   // (stage 7 bounds the radius: a curve that still bends tighter, from a chain stage 7
   // could not replace, breaks DESIGN.md section 6's promise, and says so)
-  if (polishing && r.quality.max_abs_kappa * r.tolerance > kTighterThanTolerance)
+  if (polishing && bendsTighterThanTolerance(r))
     r.warnings.push_back("the curve bends tighter than the tolerance: its tightest radius is " +
                          std::to_string(r.quality.min_radius) + ", the tolerance is " + std::to_string(r.tolerance));
   r.out_of_time = context.outOfTime();
@@ -483,8 +486,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   };
   // (a curve bending tighter than the tolerance that another fit may mend)
   auto mendable = [&](const FitResult& f) {
-    return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit &&
-           f.quality.max_abs_kappa * f.tolerance > kTighterThanTolerance;
+    return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit && bendsTighterThanTolerance(f);
   };
   // The stroke fitted again with corners at `bends` as well as at `earlier` ones, with
   // the bound, in about the time the fit took so far; nullopt where no corner can go there.
@@ -510,7 +512,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     // those bends corners, a whole fit later (the shared data's slowest fit, a drawn
     // star: 224 -> 176 ms, the same curve).
     const std::vector<Vec2> on_bound = tightBends(r, kOnTheBound);
-    std::optional<FitResult> cornered = corneredAt(r, corners_at, on_bound);
+    std::optional<FitResult> cornered = corneredAt(r, {}, on_bound);
     if (cornered && !cornered->out_of_time && cornered->g2.usable() && !misses(*cornered) && !mendable(*cornered)) {
       r = std::move(*cornered);
       corners_at = on_bound;
