@@ -24,9 +24,6 @@ constexpr double kOnTheBound = 0.999;
 // A part whose chain with a joint on the bound misses by more than this many tolerances
 // misses for another reason (a scribble's): it is not fitted again without the bound.
 constexpr double kBoundsMiss = 4.0;
-// A curvature above this many times 1 / tolerance bends tighter than the tolerance (the
-// bound itself, to rounding, does not).
-constexpr double kTighterThanTolerance = 1.0 + 1e-6;
 // Rounds of corners put at bends tighter than the tolerance (see fitStroke).
 constexpr int kTightBendRounds = 2;
 // A corner put at a tight bend goes to the point turning most this many points about it.
@@ -92,18 +89,6 @@ double hookTolerance(const Stroke& stroke, const FitOptions& options) {
   return lo.x() <= hi.x() ? options.tolerance_fraction * (hi - lo).norm() : 0.0;
 }
 
-// The largest |kappa| of a chain.
-double largestKappa(const std::vector<LaSegment>& segments) {
-  double most = 0.0;
-  for (const LaSegment& s : segments) most = std::max(most, s.maxAbsKappa());
-  return most;
-}
-
-// Whether some segment bends tighter than the tolerance.
-bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) {
-  return largestKappa(segments) * tolerance > kTighterThanTolerance;
-}
-
 // Whether a fit's curve bends tighter than its tolerance, by its measured figures.
 bool bendsTighterThanTolerance(const FitResult& f) { return f.quality.max_abs_kappa * f.tolerance > kTighterThanTolerance; }
 
@@ -135,6 +120,12 @@ std::vector<Vec2> tightBends(const FitResult& r, double factor = kTighterThanTol
   return at;
 }
 
+// The stroke's point farthest from its curve.
+Vec2 farthestPoint(const FitResult& r) {
+  const std::vector<double> d = distancesToCurve(r.curve, r.cleaned.points, r.quality.diagonal);
+  return r.cleaned.points[static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin())];
+}
+
 // The point of `stroke` where it turns most (by the angle between its steps in and out)
 // among the point nearest `q` and kCornerReach points either side of it that can be a
 // corner (canBeCorner): a star's tip with a pen-up hook turns most at the hook's far
@@ -161,10 +152,10 @@ std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
 }
 
 // The whole pipeline, stage 7's radius bounded as `radius_bound` says, with corners also
-// where the points turn most near each of `corners_at` (cornerNear); the time budget
-// counts from `start`.
+// where the points turn most near each of `corners_at` (cornerNear), and a tolerance of at
+// least `least_tolerance`; the time budget counts from `start`.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, RadiusBound radius_bound,
-                  Clock::time_point start, const std::vector<Vec2>& corners_at = {}) {
+                  Clock::time_point start, const std::vector<Vec2>& corners_at = {}, double least_tolerance = 0.0) {
   FitResult r;
   const auto cleanup_start = Clock::now();  // (a rerun's start is the first run's)
   r.cleaned = cleanStroke(stroke, options.cleanup, hook_tolerance);
@@ -174,7 +165,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
   const Noise noise = noiseOf(r.cleaned.points, r.cleaned.corners);
-  r.tolerance = std::max(r.requested_tolerance, noise.floor);
+  r.tolerance = std::max({r.requested_tolerance, noise.floor, least_tolerance});
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
@@ -273,11 +264,17 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
     auto consider = [&](PartFit other, SplineStart spline_start = SplineStart::kShotThenHalved) {
       polish(other, spline_start);
-      // (G2 first, then the cap on extrema, then the deviation)
+      // (G2 first, then the cap on extrema, then the bound on the radius where it is
+      // promised, then the deviation: stage 6's chain, unpolished, can be closer and bend
+      // 21 times tighter than the tolerance)
       const bool other_kept = !overCap(other.segments, part.closed, context);
       const bool kept = !overCap(fit.segments, part.closed, context);
+      const bool bounding = context.radius_bound != RadiusBound::kFree;
+      const bool other_bounded = !bounding || !bendsTighterThan(other.segments, r.tolerance);
+      const bool bounded = !bounding || !bendsTighterThan(fit.segments, r.tolerance);
       const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable()
                           : other_kept != kept                 ? other_kept
+                          : other_bounded != bounded           ? other_bounded
                                                                : measure(other) < measure(fit);
       if (better) fit = std::move(other);
     };
@@ -295,6 +292,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       smoothed.points = withoutStairs(part.points, part.closed);
       consider(fitPart(smoothed, context, true));
     }
+    // A short noisy side between corners: the chains can all loop away from it (6 points,
+    // 23 units astray, where the tolerance is 5), and one segment between its ends is
+    // closer.
+    if (misses())
+      if (std::optional<PartFit> arc = oneArcPart(part, context, "one LA segment, where the chains miss")) consider(std::move(*arc));
     return orOne(std::move(fit));
   };
   // A part whose chain misses the tolerance with a joint on the bound of the radius (the
@@ -375,9 +377,10 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     }
     // (a merge is tried from stage 7's own start only: the other starts rescue a part
     // that misses, which the two parts apart do not need)
-    // (nor where the two as one bend tighter than the tolerance: that is a corner)
+    // (nor where the two as one bend tighter than the tolerance: that is a corner; nor
+    // where they stray: a noisy stroke's two parts as one looped 29 tolerances away)
     PartFit smooth = fitOne(merged, false);
-    if (!smooth.g2.usable() || !(smooth.max_dev <= r.tolerance) || bendsTighterThan(smooth.segments, r.tolerance)) {
+    if (!smooth.g2.usable() || !(worstOf(smooth, merged) <= r.tolerance) || bendsTighterThan(smooth.segments, r.tolerance)) {
       ++k;
       continue;
     }
@@ -472,6 +475,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
                       std::to_string(options.max_points) + " (FitOptions::max_points; lafit --max-points raises it)");
   const double hook_tolerance = hookTolerance(stroke, options);
   FitResult r = fitOnce(stroke, options, hook_tolerance, RadiusBound::kBoundThenFree, start);
+  const double first_tolerance = r.tolerance;
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
   // and the corners stage 7 adds do not always find: where the bound on the radius
   // costs the tolerance, the fit without it, if that keeps the tolerance. (fitOnce does
@@ -489,7 +493,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit && bendsTighterThanTolerance(f);
   };
   // The stroke fitted again with corners at `bends` as well as at `earlier` ones, with
-  // the bound, in about the time the fit took so far; nullopt where no corner can go there.
+  // the bound, in about the time the fit took so far, and at least the first fit's
+  // tolerance (corners split the points into shorter parts, whose noise reads lower: a
+  // noisy 8-point stroke's tolerance fell from 0.66 to 0.11, and 6 segments followed its
+  // noise); nullopt where no corner can go there.
   auto corneredAt = [&](const FitResult& from, const std::vector<Vec2>& earlier,
                         const std::vector<Vec2>& bends) -> std::optional<FitResult> {
     CleanStroke with = from.cleaned;  // (where no corner can go, no fit is tried)
@@ -500,18 +507,29 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     FitOptions bounded_time = options;
     const double spent = msSince(start);
     bounded_time.time_budget_ms = options.time_budget_ms > 0.0 ? std::min(options.time_budget_ms, 2.0 * spent) : 2.0 * spent;
-    return fitOnce(stroke, bounded_time, hook_tolerance, RadiusBound::kBoundThenFree, start, at);
+    return fitOnce(stroke, bounded_time, hook_tolerance, RadiusBound::kBoundThenFree, start, at, first_tolerance);
   };
+  // (a refit that strays further than the warning's bound and than the curve it would
+  // replace: a loop where the stroke has none is no mend for a tight bend)
+  auto strays = [&](const FitResult& f) { return f.stray > std::max(kStrayWarning * f.tolerance, r.stray); };
   std::vector<Vec2> corners_at;
-  // (only where some joint is on the bound: elsewhere the fit without it is the same)
+  // (a miss by the stray alone is fitted again only where some joint is on the bound, as
+  // before the miss with no bend on the bound was: the stray is a pass over the curve,
+  // for every stroke: about 5% of the data's time, measured)
   const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
-  if (polishing && bounded && !r.cleaned.straight && !r.out_of_time && !r.over_polish_limit && misses(r)) {
+  if (polishing && (bounded || r.quality.max_dev > r.tolerance) && !r.cleaned.straight && !r.out_of_time &&
+      !r.over_polish_limit && misses(r)) {
     // The bends on the bound made corners first: where that fit keeps the tolerance and
     // bends no tighter than it, the fit without the bound is not needed. It would bend
     // tighter than the tolerance where the bound held, and the rounds below would make
     // those bends corners, a whole fit later (the shared data's slowest fit, a drawn
-    // star: 224 -> 176 ms, the same curve).
-    const std::vector<Vec2> on_bound = tightBends(r, kOnTheBound);
+    // star: 224 -> 176 ms, the same curve). A miss with no bend on the bound has its
+    // corner tried at the point farthest from the curve, then the fit without the bound:
+    // a part can miss with one segment that bends nowhere near the bound, kept over
+    // chains that bend tighter or stray (12 noisy samples: 1.25 tolerances off, where a
+    // corner at the free fit's tight bend keeps the tolerance).
+    std::vector<Vec2> on_bound = tightBends(r, kOnTheBound);
+    if (on_bound.empty() && r.quality.max_dev > r.tolerance) on_bound = {farthestPoint(r)};
     std::optional<FitResult> cornered = corneredAt(r, {}, on_bound);
     if (cornered && !cornered->out_of_time && cornered->g2.usable() && !misses(*cornered) && !mendable(*cornered)) {
       r = std::move(*cornered);
@@ -532,6 +550,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     corners_at.insert(corners_at.end(), more.begin(), more.end());
     if (cornered->out_of_time || !cornered->g2.usable() ||
         cornered->quality.max_dev > std::max(kCorneredMiss * cornered->tolerance, r.quality.max_dev) ||
+        strays(*cornered) ||
         !(cornered->quality.max_abs_kappa < r.quality.max_abs_kappa))
       break;
     r = std::move(*cornered);
@@ -542,8 +561,9 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // the tolerance comes first, as the cap on extrema does, and the warnings say what it
   // costs.
   if (!corners_at.empty() && mendable(r)) {
-    FitResult strict = fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, corners_at);
-    if (strict.g2.usable() && !strict.out_of_time && strict.quality.max_abs_kappa < r.quality.max_abs_kappa)
+    FitResult strict = fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, corners_at, first_tolerance);
+    if (strict.g2.usable() && !strict.out_of_time && strict.quality.max_abs_kappa < r.quality.max_abs_kappa &&
+        !strays(strict))
       r = std::move(strict);
   }
   r.timings.total_ms = msSince(start);

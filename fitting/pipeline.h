@@ -52,13 +52,17 @@
 // segment strays (the fit closes such misses, and cuts leave slivers). Where stage 6 finds
 // no G2 chain the fit starts from the spline itself; where its result still misses the
 // tolerance or G2, stages 2-6 as the paper has them (cutting what strays) give a second
-// start, and for pixel-quantized strokes stages 2-6 on the points with their stairs
-// smoothed a third; the best result stays (G2 first, then the cap, then the deviation).
-// Stage 7 bends no tighter than the tolerance; where that costs the tolerance (a tight
-// bend the clean-up did not take for a corner), the fit runs again with corners at the
-// bends on the bound. Where that misses, or still bends tighter, it runs without the
-// bound, then with corners at the bends that came out tighter, and, where one still does
-// (a capped stroke's part), with those corners and the bound everywhere: the bound wins.
+// start, for pixel-quantized strokes stages 2-6 on the points with their stairs
+// smoothed a third, and one LA segment between the part's ends a last; the best result
+// stays (G2 first, then the cap, then the bound on the radius, then the deviation, the
+// stray counted). Stage 7 bends no tighter than the tolerance; where the curve misses it
+// (a tight bend the clean-up did not take for a corner), the fit runs again with corners
+// at the bends on the bound, or where none is, at the point farthest from the curve.
+// Where that misses, or still bends tighter, it runs without the bound, then with
+// corners at the bends that came out tighter, and, where one still does (a capped
+// stroke's part), with those corners and the bound everywhere: the bound wins. A rerun
+// keeps at least the first fit's tolerance, and is not kept where it loops away from
+// the stroke.
 
 #include <optional>
 #include <string>

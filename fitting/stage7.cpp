@@ -120,6 +120,16 @@ SelectionOptions stage7Selection(const FitContext& context) {
   return so;
 }
 
+double largestKappa(const std::vector<LaSegment>& segments) {
+  double most = 0.0;
+  for (const LaSegment& s : segments) most = std::max(most, s.maxAbsKappa());
+  return most;
+}
+
+bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) {
+  return largestKappa(segments) * tolerance > kTighterThanTolerance;
+}
+
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context) {
   const int cap = context.options.segmentation.max_extrema;
   return cap >= 0 && overExtremaCap(curveOf(segments, closed), context.diagonal, cap);
@@ -146,27 +156,11 @@ PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
   return fit;
 }
 
-void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
-  if (part.points.size() < 3 || !overCap(fit.segments, part.closed, context)) return;
-  auto replaceBy = [&](const ChainFitResult& chain, const std::string& what) {
-    fit = partFitOf(chain, what);
-    fit.max_dev = maxDeviationOf(fit.segments, part.points, context.diagonal);
-  };
-  auto alone = [](const LaSegment& segment) {  // (a segment no fit made)
-    ChainFitResult chain;
-    chain.segments = {segment};
-    return chain;
-  };
-  if (part.closed) {
-    // (a simple closed curve other than a circle has at least 4 extrema)
-    if (context.options.segmentation.max_extrema >= 4) return;
-    if (const std::optional<LaSegment> circle = closestCircle(part.points))
-      replaceBy(alone(*circle), "the closest circle, for the cap on extrema");
-    return;
-  }
+std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what) {
+  if (part.closed || part.points.size() < 3) return std::nullopt;
   const Vec2 a = part.points.front(), m = part.points[part.points.size() / 2], b = part.points.back();
   const double chord = (b - a).norm();
-  if (!(chord > 0.0)) return;
+  if (!(chord > 0.0)) return std::nullopt;
   // (the circle through the three points: signed curvature 2 sin(angle at m) / chord; the
   // arc from a to b, turning kappa L, starts turned back by half of it)
   double kappa = 2.0 * cross(m - a, b - m) / ((m - a).norm() * (b - m).norm() * chord);
@@ -180,8 +174,29 @@ void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
   ChainFitResult r = fitChain({arc}, part.points, {}, co);
   if (r.report.status != SolveStatus::kBadInput && r.improved && co.fix_end)
     r.segments = snapToJoints(r.segments, false, b, context.g2(), kSnapReach * context.tolerance);
-  if (r.report.status == SolveStatus::kBadInput || !r.improved || r.segments.empty()) r = alone(arc);
-  replaceBy(r, "one LA segment, for the cap on extrema");
+  if (r.report.status == SolveStatus::kBadInput || !r.improved || r.segments.empty()) {
+    r = ChainFitResult{};  // (that arc, which no fit made)
+    r.segments = {arc};
+  }
+  PartFit fit = partFitOf(r, what);
+  fit.max_dev = maxDeviationOf(fit.segments, part.points, context.diagonal);
+  return fit;
+}
+
+void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
+  if (part.points.size() < 3 || !overCap(fit.segments, part.closed, context)) return;
+  if (part.closed) {
+    // (a simple closed curve other than a circle has at least 4 extrema)
+    if (context.options.segmentation.max_extrema >= 4) return;
+    if (const std::optional<LaSegment> circle = closestCircle(part.points)) {
+      ChainFitResult alone;  // (a circle no fit made)
+      alone.segments = {*circle};
+      fit = partFitOf(alone, "the closest circle, for the cap on extrema");
+      fit.max_dev = maxDeviationOf(fit.segments, part.points, context.diagonal);
+    }
+    return;
+  }
+  if (std::optional<PartFit> arc = oneArcPart(part, context, "one LA segment, for the cap on extrema")) fit = std::move(*arc);
 }
 
 // (fits its chain to the points and selects its segments, fitting/model_selection.h)
@@ -237,13 +252,16 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     segments = snapToJoints(segments, co.closed, part.points.back(), g2, kSnapReach * tol);
     if (segments.empty()) return;
   }
-  // (the user's limits on the chain it started from: looked at only where stage 7 misses)
+  // (the user's limits and the bound on the chain it started from: looked at only where
+  // stage 7 misses)
   auto withinLimits = [&] {
     auto in_range = [&](const LaSegment& s) {
       return s.isStraight() || (s.alpha() >= options.min_alpha && s.alpha() <= options.max_alpha);
     };
+    const bool bounded = context.radius_bound == RadiusBound::kFree || !bendsTighterThan(fit.segments, tol);
     return !overCap(fit.segments, part.closed, context) &&
-           (polished.max_distance > kAstrayFit * tol || std::all_of(fit.segments.begin(), fit.segments.end(), in_range));
+           (polished.max_distance > kAstrayFit * tol ||
+            (bounded && std::all_of(fit.segments.begin(), fit.segments.end(), in_range)));
   };
   if (polished.max_distance > tol && fit.g2.usable() && withinLimits()) {
     // Outside the tolerance: kept if closer to the points than the G2 chain it started
@@ -251,8 +269,10 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     // (a kink where the user drew none is worse than a miss, which the figures report);
     // so is one over the cap on extrema (the cap wins over the tolerance), and one with an
     // alpha outside the options' range (the paper's inflection segments reach such
-    // alphas; stage 7 keeps its own within it), unless stage 7's chain is astray (a fit
-    // the time budget cut short: a glyph's part 6 tolerances off, its paper chain 0.6).
+    // alphas; stage 7 keeps its own within it) or bending tighter than the tolerance
+    // where the bound is promised (a noisy 8-point side: stage 6's chain 21 times
+    // tighter), unless stage 7's chain is astray (a fit the time budget cut short: a
+    // glyph's part 6 tolerances off, its paper chain 0.6).
     fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
     if (polished.max_distance >= fit.max_dev) return;
   }

@@ -45,6 +45,16 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
 /// deadline; closure, fixed ends and corners are the caller's.
 SelectionOptions stage7Selection(const FitContext& context);
 
+/// A curvature above this many times 1 / tolerance bends tighter than the tolerance (the
+/// bound itself, to rounding, does not).
+inline constexpr double kTighterThanTolerance = 1.0 + 1e-6;
+
+/// The largest |kappa| of a chain.
+double largestKappa(const std::vector<LaSegment>& segments);
+
+/// Some segment of the chain bends tighter than the tolerance.
+bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance);
+
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);
 
@@ -52,6 +62,12 @@ bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitConte
 /// not stand behind it), its points' feet on it kept, its reports from its segments;
 /// `what` says how it was made.
 PartFit partFitOf(const ChainFitResult& chain, const std::string& what);
+
+/// One LA segment fitted to an open part's points between its ends (held where they are
+/// corners), from the arc through its ends and its middle point, or where that fit fails,
+/// that arc; `what` says why. Nullopt for a closed part, or one of fewer than 3 points or
+/// whose ends meet.
+std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what);
 
 /// The cap on extrema wins: a part's chain still over it (a part whose capped chain could
 /// not be snapped onto its corner keeps the chain of stages 2-6) becomes one LA segment
