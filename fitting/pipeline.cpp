@@ -24,6 +24,10 @@ constexpr double kOnTheBound = 0.999;
 // A part whose chain with a joint on the bound misses by more than this many tolerances
 // misses for another reason (a scribble's): it is not fitted again without the bound.
 constexpr double kBoundsMiss = 4.0;
+// A part's one LA segment for fewer extrema (fitOnce) is not fitted where the arc it
+// starts from passes this many tolerances from a point: on the shared data none that
+// started further off was kept, and the screen spares a third of the fits.
+constexpr double kArcStartMiss = 5.0;
 // Rounds of corners put at bends tighter than the tolerance (see fitStroke).
 constexpr int kTightBendRounds = 2;
 // A corner put at a tight bend goes to the point turning most this many points about it.
@@ -402,6 +406,26 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     if (fitAcrossCorners(fits, parts, closed, context))
       joinAtCorners(fits, parts, context.g2());  // (a closed chain's seam, to rounding)
     r.timings.polish_ms += msSince(tp);
+  }
+  // Fewest extrema first (the objective, pipeline.h): a part whose chain has several segments
+  // and a curvature extremum gives way to one LA segment between the chain's ends (where
+  // the fit across corners put its corners), where that keeps the selection's tolerance
+  // and the bound. The selection merges only at weak extrema, and a short noisy side's
+  // chain has strong ones: 5 points came out as 4 segments through them. (After the fit
+  // across corners, which moves the corners with the sides' freedom: done per part
+  // before it, a drawn star's side as one segment left its neighbour outside.)
+  if (polishing && !context.outOfTime()) {
+    const double within = stage7Selection(context).tolerance;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      PartFit& fit = fits[k];
+      if (parts[k].closed || fit.segments.size() < 2 || !overExtremaCap(curveOf(fit.segments, false), diag, 0)) continue;
+      Part between = parts[k];  // (its corners where the chain has them)
+      if (between.starts_at_corner) between.points.front() = fit.segments.front().start();
+      if (between.ends_at_corner) between.points.back() = fit.segments.back().end();
+      std::optional<PartFit> arc = oneArcPart(between, context, "one LA segment, for fewer extrema", kArcStartMiss * r.tolerance);
+      if (arc && arc->g2.usable() && worstOf(*arc, parts[k]) <= within && !bendsTighterThan(arc->segments, r.tolerance))
+        fit = std::move(*arc);
+    }
   }
   // The stroke's one segment that missed the tolerance, where the parts miss it by more
   // (their deviation or stray), as a part's near miss is kept (fitOneWith's orOne): a

@@ -156,7 +156,7 @@ PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
   return fit;
 }
 
-std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what) {
+std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what, double screen) {
   if (part.closed || part.points.size() < 3) return std::nullopt;
   const Vec2 a = part.points.front(), m = part.points[part.points.size() / 2], b = part.points.back();
   const double chord = (b - a).norm();
@@ -168,6 +168,7 @@ std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, c
   const double half = std::asin(std::min(1.0, 0.5 * std::abs(kappa) * chord));
   const double length = kappa == 0.0 ? chord : 2.0 * half / std::abs(kappa);
   const LaSegment arc = LaSegment::arc(length, a, angleOf(b - a) - 0.5 * kappa * length, kappa);
+  if (screen < INFINITY && !(maxDeviationOf({arc}, part.points, context.diagonal) <= screen)) return std::nullopt;
   ChainFitOptions co = stage7Selection(context).fit;
   co.fix_start = part.starts_at_corner;
   co.fix_end = part.ends_at_corner;

@@ -65,9 +65,10 @@ PartFit partFitOf(const ChainFitResult& chain, const std::string& what);
 
 /// One LA segment fitted to an open part's points between its ends (held where they are
 /// corners), from the arc through its ends and its middle point, or where that fit fails,
-/// that arc; `what` says why. Nullopt for a closed part, or one of fewer than 3 points or
-/// whose ends meet.
-std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what);
+/// that arc; `what` says why. Nullopt for a closed part, one of fewer than 3 points or
+/// whose ends meet, or where that arc passes further than `screen` from some point.
+std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what,
+                                  double screen = INFINITY);
 
 /// The cap on extrema wins: a part's chain still over it (a part whose capped chain could
 /// not be snapped onto its corner keeps the chain of stages 2-6) becomes one LA segment
