@@ -851,6 +851,36 @@ TEST(PipelineFairness, ABendUnderTheCornerAngleIsNoTighterThanTheToleranceTells)
   }
 }
 
+// A pointed arch: two circular arcs of radius 100 meeting at its apex, 12 samples a side,
+// with noise of 0.5 units, 12 seeds. Each side is one arc: no curvature extremum. The
+// selection merges only at weak extrema, and a side's chain kept a strong one where the
+// noise bent it (seed 2 here; 3 of 12 with numpy's noise): a side curling into its
+// corner. Now each side is one LA segment.
+TEST(PipelineFairness, APointedArchsSidesHaveNoCurvatureExtremum) {
+  constexpr double kWidth = 100.0;
+  constexpr int kPerSide = 12;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, 0.5);
+    std::vector<Vec2> points;
+    for (int k = 0; k < 2 * kPerSide - 1; ++k) {
+      // (the left side about (kWidth, 0) from angle pi to 2 pi / 3, the right one about
+      // the origin from pi / 3 to 0)
+      const double s = static_cast<double>(k < kPerSide ? k : k - kPerSide + 1) / (kPerSide - 1);
+      const Vec2 p = k < kPerSide ? Vec2(Vec2(kWidth, 0.0) + kWidth * unitVector(std::numbers::pi * (1.0 - s / 3.0)))
+                                  : Vec2(kWidth * unitVector(std::numbers::pi / 3.0 * (1.0 - s)));
+      points.push_back(p + Vec2(noise(rng), noise(rng)));
+    }
+    const FitResult r = fit(points, FitOptions{});
+    ASSERT_FALSE(r.curve.pieces.empty());
+    EXPECT_EQ(r.quality.corners, 1) << describeFit(r);
+    EXPECT_EQ(r.quality.max_extrema_per_part, 0) << describeFit(r);
+    EXPECT_LE(r.quality.max_dev, r.tolerance) << describeFit(r);
+    expectGaps(r);
+  }
+}
+
 // The crossbar of a drawn H (MMG's stylus set, H-01's second stroke) with noise of 1.2
 // units: 12 samples, the first a pen-down hook. Fitted with the bound on the radius, it
 // missed the tolerance with a joint on the bound; fitted again without the bound it
