@@ -25,8 +25,8 @@ constexpr double kOnTheBound = 0.999;
 // misses for another reason (a scribble's): it is not fitted again without the bound.
 constexpr double kBoundsMiss = 4.0;
 // A part's one LA segment for fewer extrema (fitOnce) is not fitted where the arc it
-// starts from passes this many tolerances from a point: on the shared data none that
-// started further off was kept, and the screen spares a third of the fits.
+// starts from passes this many tolerances from a point (from its circle: at most its
+// distance from the arc): on the shared data none kept started further off than 2.1.
 constexpr double kArcStartMiss = 5.0;
 // Rounds of corners put at bends tighter than the tolerance (see fitStroke).
 constexpr int kTightBendRounds = 2;
@@ -407,10 +407,10 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       joinAtCorners(fits, parts, context.g2());  // (a closed chain's seam, to rounding)
     r.timings.polish_ms += msSince(tp);
   }
-  // Fewest extrema first (the objective, pipeline.h): a part whose chain has several segments
-  // and a curvature extremum gives way to one LA segment between the chain's ends (where
-  // the fit across corners put its corners), where that keeps the selection's tolerance
-  // and the bound. The selection merges only at weak extrema, and a short noisy side's
+  // Fewest extrema first (the objective, pipeline.h): a part whose chain has several
+  // segments and a curvature extremum gives way to one LA segment between the chain's
+  // ends (where the fit across corners put its corners), where that keeps the
+  // selection's tolerance and the bound. The selection merges only at weak extrema, and a short noisy side's
   // chain has strong ones: 5 points came out as 4 segments through them. (After the fit
   // across corners, which moves the corners with the sides' freedom: done per part
   // before it, a drawn star's side as one segment left its neighbour outside.)
@@ -538,8 +538,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   auto strays = [&](const FitResult& f) { return f.stray > std::max(kStrayWarning * f.tolerance, r.stray); };
   std::vector<Vec2> corners_at;
   // (a miss by the stray alone is fitted again only where some joint is on the bound, as
-  // before the miss with no bend on the bound was: the stray is a pass over the curve,
-  // for every stroke: about 5% of the data's time, measured)
+  // every miss was before: measuring the stray is a pass over the curve, which for every
+  // stroke cost about 5% of the data's time)
   const bool bounded = r.quality.max_abs_kappa * r.tolerance > kOnTheBound;
   if (polishing && (bounded || r.quality.max_dev > r.tolerance) && !r.cleaned.straight && !r.out_of_time &&
       !r.over_polish_limit && misses(r)) {

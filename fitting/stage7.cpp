@@ -168,12 +168,12 @@ std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, c
   if (!std::isfinite(kappa)) kappa = 0.0;
   const double half = std::asin(std::min(1.0, 0.5 * std::abs(kappa) * chord));
   const double length = kappa == 0.0 ? chord : 2.0 * half / std::abs(kappa);
-  const LaSegment arc = LaSegment::arc(length, a, angleOf(b - a) - 0.5 * kappa * length, kappa);
+  const double theta0 = angleOf(b - a) - 0.5 * kappa * length;
+  const LaSegment arc = LaSegment::arc(length, a, theta0, kappa);
   if (screen < INFINITY) {
     // (each point's distance from the arc's circle, or its line, is at most its distance
     // from the arc: a pass of a few flops a point, where the distance from the arc itself
     // cost a tenth of a 1,000-point stroke's fit)
-    const double theta0 = angleOf(b - a) - 0.5 * kappa * length;
     const Vec2 centre = kappa == 0.0 ? a : Vec2(a + unitVector(theta0 + 0.5 * std::numbers::pi) / kappa);
     const Vec2 along = (b - a) / chord;
     for (const Vec2& p : part.points) {
