@@ -273,9 +273,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       // 21 times tighter than the tolerance)
       const bool other_kept = !overCap(other.segments, part.closed, context);
       const bool kept = !overCap(fit.segments, part.closed, context);
-      const bool bounding = context.radius_bound != RadiusBound::kFree;
-      const bool other_bounded = !bounding || !bendsTighterThan(other.segments, r.tolerance);
-      const bool bounded = !bounding || !bendsTighterThan(fit.segments, r.tolerance);
+      const bool other_bounded = keepsTheBound(other.segments, context);
+      const bool bounded = keepsTheBound(fit.segments, context);
       const bool better = other.g2.usable() != fit.g2.usable() ? other.g2.usable()
                           : other_kept != kept                 ? other_kept
                           : other_bounded != bounded           ? other_bounded

@@ -131,6 +131,10 @@ bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance) 
   return largestKappa(segments) * tolerance > kTighterThanTolerance;
 }
 
+bool keepsTheBound(const std::vector<LaSegment>& segments, const FitContext& context) {
+  return context.radius_bound == RadiusBound::kFree || !bendsTighterThan(segments, context.tolerance);
+}
+
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context) {
   const int cap = context.options.segmentation.max_extrema;
   return cap >= 0 && overExtremaCap(curveOf(segments, closed), context.diagonal, cap);
@@ -271,10 +275,9 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     auto in_range = [&](const LaSegment& s) {
       return s.isStraight() || (s.alpha() >= options.min_alpha && s.alpha() <= options.max_alpha);
     };
-    const bool bounded = context.radius_bound == RadiusBound::kFree || !bendsTighterThan(fit.segments, tol);
     return !overCap(fit.segments, part.closed, context) &&
            (polished.max_distance > kAstrayFit * tol ||
-            (bounded && std::all_of(fit.segments.begin(), fit.segments.end(), in_range)));
+            (keepsTheBound(fit.segments, context) && std::all_of(fit.segments.begin(), fit.segments.end(), in_range)));
   };
   if (polished.max_distance > tol && fit.g2.usable() && withinLimits()) {
     // Outside the tolerance: kept if closer to the points than the G2 chain it started

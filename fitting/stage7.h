@@ -55,6 +55,10 @@ double largestKappa(const std::vector<LaSegment>& segments);
 /// Some segment of the chain bends tighter than the tolerance.
 bool bendsTighterThan(const std::vector<LaSegment>& segments, double tolerance);
 
+/// The chain keeps the bound on the radius where the context promises it (any chain
+/// does where the context fits without it).
+bool keepsTheBound(const std::vector<LaSegment>& segments, const FitContext& context);
+
 /// A part's chain (corner-free, closed or not) has more curvature extrema than the cap.
 bool overCap(const std::vector<LaSegment>& segments, bool closed, const FitContext& context);
 
