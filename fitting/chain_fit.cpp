@@ -1074,7 +1074,7 @@ bool feetMoved(const ChainProblem& problem, const ChainModel& model, std::vector
 // point; counts iterations on.
 SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
                      int max_iterations, double relative_decrease, double least_decrease,
-                     std::chrono::steady_clock::time_point deadline, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
+                     const Budget& budget, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
                      ChainModel& model, int& iterations) {
   auto merit = [](const Eigen::VectorXd& res, const Eigen::VectorXd& con) {
     return res.squaredNorm() + kConstraintMerit * con.squaredNorm();
@@ -1092,9 +1092,10 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   std::vector<FootFrame> trial_frames, corrected_frames;
   Eigen::VectorXd trial_r, trial_c, corrected_r, corrected_c;
   for (int local = 0; local < max_iterations; ++local) {
-    if (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline) break;
+    if (budget.spent()) break;
     ++iterations;
     problem.jacobian(model, feet, frames, jac, cjac);
+    budget.charge(static_cast<std::int64_t>(jac.rows()) * jac.cols());
     const Eigen::MatrixXd a = normalMatrix(jac);
     const Eigen::VectorXd g = jac.transpose() * r;
     bool accepted = false, converged = false;
@@ -1465,7 +1466,7 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   const double least = std::max(kNegligibleDecrease * noise * noise, options.least_decrease / (scale * scale));
   int iterations = 0;
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
-                                      options.deadline, x, used_feet, model, iterations);
+                                      options.budget, x, used_feet, model, iterations);
   used.evaluate(model, used_feet, frames, r, c);
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.

@@ -58,11 +58,11 @@
 // constraints), and geodesic acceleration needs the model's second derivative along
 // the step.
 
-#include <chrono>
 #include <vector>
 
 #include "core/la_segment.h"
 #include "core/solve_report.h"
+#include "fitting/budget.h"
 #include "fitting/chain.h"
 #include "fitting/g2_joints.h"
 
@@ -108,9 +108,9 @@ struct ChainFitOptions {
   /// its point is the tip of the rounding: held there, the corner stays near the stroke.
   bool hold_corner_points = false;
   int max_iterations = 30;  // Levenberg-Marquardt steps
-  /// No step starts after this (FitOptions::time_budget_ms): the best chain so far is
-  /// kept, as at the iteration limit.
-  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// No step starts once it is spent (fitting/budget.h): the best chain so far is kept,
+  /// as at the iteration limit. Each step charges it the Jacobian's size.
+  Budget budget;
   /// Stop when a step lowers the cost by less than this fraction, or by less than a
   /// tenth of one point's noise variance, or by less than least_decrease.
   double relative_decrease = 1e-7;

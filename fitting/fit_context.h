@@ -1,7 +1,7 @@
 #pragma once
 // What every stage of one fit shares (fitting/pipeline.h runs them): the options as the
 // user gave them, the tolerance as used, the points' noise, the stroke's size, the
-// time spent per stage and the time left.
+// time spent per stage and what the fit may still spend.
 //
 // The tolerance has one meaning everywhere: the largest distance the curve may pass
 // from any point of the stroke, in the stroke's units, after the noise floor raised it
@@ -10,6 +10,7 @@
 
 #include <chrono>
 
+#include "fitting/budget.h"
 #include "fitting/g2_joints.h"
 #include "fitting/pipeline.h"
 #include "fitting/stroke_noise.h"
@@ -44,12 +45,10 @@ struct FitContext {
   Noise noise;
   double diagonal = 0.0;   // of the cleaned stroke's bounding box
   StageTimings& timings;
-  /// When the fit's time budget (FitOptions::time_budget_ms) runs out: stage 7 stops
-  /// editing and keeps the best G2 chain it has. Clock::time_point::max(): no budget.
-  Clock::time_point deadline = Clock::time_point::max();
+  /// Once it is spent (the time budget, FitOptions::time_budget_ms, or a path's share of
+  /// work), stage 7 stops editing and keeps the best G2 chain it has.
+  Budget budget;
   RadiusBound radius_bound = RadiusBound::kBoundThenFree;
-
-  bool outOfTime() const { return deadline != Clock::time_point::max() && Clock::now() >= deadline; }
 
   G2Options g2() const { return g2OptionsOf(options, diagonal); }
 };

@@ -471,9 +471,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     not_kept.clear();
   };
   int edits = 0;
-  auto outOfTime = [&] {
-    if (options.deadline == std::chrono::steady_clock::time_point::max()) return false;
-    if (std::chrono::steady_clock::now() < options.deadline) return false;
+  auto spent = [&] {
+    if (!options.budget.spent()) return false;
     out.out_of_time = true;
     return true;
   };
@@ -631,7 +630,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
       for (const Candidate& c : candidates) {
-        if (edits >= options.max_edits || outOfTime()) break;
+        if (edits >= options.max_edits || spent()) break;
         ++edits;
         const Tried tried{c.kind, c.index, c.count};
         if (std::find(not_kept.begin(), not_kept.end(), tried) != not_kept.end()) continue;
@@ -831,7 +830,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   };
   // Splits while some point is out of tolerance (and the split helps).
   while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty() &&
-         !outOfTime()) {
+         !spent()) {
     const ChainFitResult unweighted = out.fit;
     reweigh();
     if (out.fit.max_distance <= options.tolerance) break;

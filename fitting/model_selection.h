@@ -55,7 +55,6 @@
 // too many, or whose cap is under 4 (a simple closed curve other than a circle has at
 // least 4: the four-vertex theorem), becomes the circle closest to its points.
 
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -98,9 +97,9 @@ struct SelectionOptions {
   /// quality figures count them, against this diagonal (the whole stroke's; 0: the points').
   int max_extrema = -1;
   double diagonal = 0.0;
-  /// No edit starts after this (the cap's merges excepted): the chain as it is then is
-  /// the result.
-  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+  /// No edit starts once it is spent (the cap's merges excepted): the chain as it is then
+  /// is the result.
+  Budget budget;
   ChainFitOptions fit;
 };
 
@@ -110,7 +109,7 @@ struct SelectionResult {
   int splits = 0, collapses = 0, merges = 0, straightenings = 0;
   int cap_merges = 0;     // merges the cap on extrema forced
   bool over_cap = false;  // some part still has more extrema than the cap
-  bool out_of_time = false;  // the deadline stopped the edits
+  bool out_of_time = false;  // the budget stopped the edits
 };
 
 /// The circle closest to the points (least squares on x^2 + y^2 + D x + E y + F = 0), as

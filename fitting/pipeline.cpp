@@ -37,9 +37,12 @@ constexpr std::size_t kCornerReach = 2;
 // miss this small, the warning tells).
 constexpr double kCorneredMiss = 1.01;
 // Where a part's one LA segment misses the tolerance, the chains from stages 2-6 get this
-// many times the time it took (fitOneWith); once, where it (or split) misses by at most
-// a tenth.
-constexpr int kChainPathTimes = 4;
+// many times the work it took (fitOneWith); kNearMissTimes where it (or split) misses by
+// at most a tenth. (Work counts the chain fits' Jacobians alone: the one segment's tries
+// spend most of their time in its starts' shots, so these are 4 times the shares of its
+// time they replace, 4 and 1, measured on spiral_benchmark: every counter the same.)
+constexpr int kChainPathTimes = 16;
+constexpr int kNearMissTimes = 4;
 constexpr double kNearMiss = 1.1;
 
 // A straight stroke: its lines, a corner of pi where it turns back.
@@ -157,9 +160,11 @@ std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
 
 // The whole pipeline, stage 7's radius bounded as `radius_bound` says, with corners also
 // where the points turn most near each of `corners_at` (cornerNear), and a tolerance of at
-// least `least_tolerance`; the time budget counts from `start`.
+// least `least_tolerance`; the time budget counts from `start`, and `budget` (a share of
+// the work, on the stroke's meter) may end the fit sooner.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, RadiusBound radius_bound,
-                  Clock::time_point start, const std::vector<Vec2>& corners_at = {}, double least_tolerance = 0.0) {
+                  Clock::time_point start, const Budget& budget, const std::vector<Vec2>& corners_at = {},
+                  double least_tolerance = 0.0) {
   FitResult r;
   const auto cleanup_start = Clock::now();  // (a rerun's start is the first run's)
   r.cleaned = cleanStroke(stroke, options.cleanup, hook_tolerance);
@@ -174,8 +179,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
   context.radius_bound = radius_bound;
+  context.budget = budget;
   if (options.time_budget_ms > 0.0)
-    context.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
+    context.budget.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
 
   if (r.cleaned.straight) {
     fitStraight(r);
@@ -205,7 +211,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& given) {
     FitContext context = given;
-    if (polishing && context.outOfTime()) {
+    if (polishing && context.budget.spent()) {
       // Out of time before this part: the paper's G2 chain (stages 2-6, a fraction of
       // stage 7's time) rather than the spline's shot chain, unfitted, which stage 7 would
       // leave (a glyph's second part came out 39 times the tolerance off).
@@ -220,18 +226,20 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     std::optional<PartFit> one, split;
     if (polishing) {
       const auto tp = Clock::now();
+      const std::int64_t work_before = context.budget.done();
       one = oneSegmentPart(part, context);
       if (one && one->max_dev > r.tolerance) split = splitOneSegment(*one, part, context);
       r.timings.polish_ms += msSince(tp);
       if (one && one->max_dev <= r.tolerance) return std::move(*one);
       if (split && split->max_dev <= r.tolerance) return std::move(*split);
       // (the chains from stages 2-6 are worth only what beats it, and get a few times the
-      // time it took, as much where it misses by a little: a noisy spiral whose true
+      // work it took, as much where it misses by a little: a noisy spiral whose true
       // curve missed the tolerance by a few percent, as its one segment did, spent 1.3 s
       // on chains that missed by more, and spirals drawn from their very centre up to 6 s)
       if (one) {
         const bool near = std::min(one->max_dev, split ? split->max_dev : INFINITY) <= kNearMiss * r.tolerance;
-        context.deadline = std::min(context.deadline, Clock::now() + (near ? 1 : kChainPathTimes) * (Clock::now() - tp));
+        const std::int64_t share = (near ? kNearMissTimes : kChainPathTimes) * (context.budget.done() - work_before);
+        context.budget.work_limit = std::min(context.budget.work_limit, context.budget.done() + share);
       }
     }
     auto orOne = [&](PartFit&& fit) {
@@ -286,11 +294,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // segment): a chain close to the points. (Also out of time: stage 7's chain may have
     // been cut short far from the points, and the paper's costs a fraction of it.)
     if (misses()) consider(fitPart(part, context, false));
-    if (misses() && !context.outOfTime()) consider(unpolished, SplineStart::kHalved);
+    if (misses() && !context.budget.spent()) consider(unpolished, SplineStart::kHalved);
     // Pixel-quantized strokes: a spline through the stairs has an extremum at every
     // step and the chain from it strays; stages 2-6 on the points with their stairs
     // smoothed (stage 7 still fits the points themselves).
-    if (misses() && noise.on_grid && !context.outOfTime()) {
+    if (misses() && noise.on_grid && !context.budget.spent()) {
       Part smoothed = part;
       smoothed.points = withoutStairs(part.points, part.closed);
       consider(fitPart(smoothed, context, true));
@@ -309,7 +317,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   auto fitOneBounded = [&](const Part& part, bool other_starts) {
     const std::size_t room = polish_room;
     PartFit fit = fitOneWith(part, other_starts, context);
-    if (!polishing || context.radius_bound != RadiusBound::kBoundThenFree || context.outOfTime() || r.over_polish_limit) return fit;
+    if (!polishing || context.radius_bound != RadiusBound::kBoundThenFree || context.budget.spent() || r.over_polish_limit) return fit;
     const auto worst = [&](PartFit& f) { return worstOf(f, part); };
     const double miss = worst(fit);
     const bool on_bound = largestKappa(fit.segments) * r.tolerance > kOnTheBound;
@@ -337,7 +345,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (below).
   std::optional<PartFit> one;
   Part whole;  // (the whole stroke as one part: only where it is tried so)
-  if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.outOfTime()) {
+  if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.budget.spent()) {
     const auto tp = Clock::now();
     whole.points = r.cleaned.points;
     one = oneSegmentPart(whole, context);
@@ -362,7 +370,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (a closed stroke's one part has a seam corner only if the clean-up found corners:
   // without, its points do not end with the start again)
   const bool seam_corner = closed && parts.size() == 1 && !r.cleaned.corners.empty();
-  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (seam_corner && k == 0)) && !context.outOfTime();) {
+  for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (seam_corner && k == 0)) && !context.budget.spent();) {
     const bool seam = k + 1 == parts.size();
     const PartFit& next = seam ? fits[0] : fits[k + 1];
     if (fits[k].max_dev <= r.tolerance && next.max_dev <= r.tolerance) {
@@ -400,7 +408,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   joinAtCorners(fits, parts, context.g2());
   std::size_t segments = 0;
   for (const PartFit& fit : fits) segments += fit.segments.size();
-  if (polishing && !context.outOfTime() && !r.over_polish_limit && segments <= options.max_polish_segments) {
+  if (polishing && !context.budget.spent() && !r.over_polish_limit && segments <= options.max_polish_segments) {
     const auto tp = Clock::now();
     if (fitAcrossCorners(fits, parts, closed, context))
       joinAtCorners(fits, parts, context.g2());  // (a closed chain's seam, to rounding)
@@ -413,7 +421,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // chain has strong ones: 5 points came out as 4 segments through them. (After the fit
   // across corners, which moves the corners with the sides' freedom: done per part
   // before it, a drawn star's side as one segment left its neighbour outside.)
-  if (polishing && !context.outOfTime()) {
+  if (polishing && !context.budget.spent()) {
     const double within = stage7Selection(context).tolerance;
     for (std::size_t k = 0; k < parts.size(); ++k) {
       PartFit& fit = fits[k];
@@ -480,7 +488,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   if (polishing && bendsTighterThanTolerance(r))
     r.warnings.push_back("the curve bends tighter than the tolerance: its tightest radius is " +
                          std::to_string(r.quality.min_radius) + ", the tolerance is " + std::to_string(r.tolerance));
-  r.out_of_time = context.outOfTime();
+  r.out_of_time = context.budget.spent();
   if (r.out_of_time)
     r.warnings.push_back("the time budget of " + std::to_string(options.time_budget_ms) + " ms ran out: " +
                          (r.g2.usable() ? "the best G2 chain found by then"
@@ -497,7 +505,9 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     throw StrokeError("the stroke has " + std::to_string(stroke.samples.size()) + " samples, more than " +
                       std::to_string(options.max_points) + " (FitOptions::max_points; lafit --max-points raises it)");
   const double hook_tolerance = hookTolerance(stroke, options);
-  FitResult r = fitOnce(stroke, options, hook_tolerance, RadiusBound::kBoundThenFree, start);
+  WorkMeter work;
+  const Budget budget{.meter = &work};
+  FitResult r = fitOnce(stroke, options, hook_tolerance, RadiusBound::kBoundThenFree, start, budget);
   const double first_tolerance = r.tolerance;
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
   // and the corners stage 7 adds do not always find: where the bound on the radius
@@ -516,7 +526,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit && bendsTighterThanTolerance(f);
   };
   // The stroke fitted again with corners at `bends` as well as at `earlier` ones, with
-  // the bound, in about the time the fit took so far, and at least the first fit's
+  // the bound, in about the work the fit took so far, and at least the first fit's
   // tolerance (corners split the points into shorter parts, whose noise reads lower: a
   // noisy 8-point stroke's tolerance fell from 0.66 to 0.11, and 6 segments followed its
   // noise); nullopt where no corner can go there.
@@ -527,10 +537,9 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
       return std::nullopt;
     std::vector<Vec2> at = earlier;
     at.insert(at.end(), bends.begin(), bends.end());
-    FitOptions bounded_time = options;
-    const double spent = msSince(start);
-    bounded_time.time_budget_ms = options.time_budget_ms > 0.0 ? std::min(options.time_budget_ms, 2.0 * spent) : 2.0 * spent;
-    return fitOnce(stroke, bounded_time, hook_tolerance, RadiusBound::kBoundThenFree, start, at, first_tolerance);
+    Budget share = budget;
+    share.work_limit = 2 * work.done;
+    return fitOnce(stroke, options, hook_tolerance, RadiusBound::kBoundThenFree, start, share, at, first_tolerance);
   };
   // (a refit that strays further than the warning's bound and than the curve it would
   // replace: a loop where the stroke has none is no mend for a tight bend)
@@ -558,13 +567,13 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
       r = std::move(*cornered);
       corners_at = on_bound;
     } else {
-      FitResult free = fitOnce(stroke, options, hook_tolerance, RadiusBound::kFree, start);
+      FitResult free = fitOnce(stroke, options, hook_tolerance, RadiusBound::kFree, start, budget);
       if (!misses(free)) r = std::move(free);
     }
   }
   // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
   // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
-  // again with the bound, in about the time the fit took so far: kept where it bends less
+  // again with the bound, in about the work the fit took so far: kept where it bends less
   // tightly and keeps the tolerance (or misses it by no more, or by kCorneredMiss).
   for (int round = 0; round < kTightBendRounds && mendable(r); ++round) {
     const std::vector<Vec2> more = tightBends(r);
@@ -584,7 +593,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // the tolerance comes first, as the cap on extrema does, and the warnings say what it
   // costs.
   if (!corners_at.empty() && mendable(r)) {
-    FitResult strict = fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, corners_at, first_tolerance);
+    FitResult strict =
+        fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, budget, corners_at, first_tolerance);
     if (strict.g2.usable() && !strict.out_of_time && strict.quality.max_abs_kappa < r.quality.max_abs_kappa &&
         !strays(strict))
       r = std::move(strict);

@@ -24,7 +24,7 @@ namespace {
 // the next split point (below). G2 by construction; empty if some piece has no LA
 // segment. `length`: the spline's length between each piece's splits.
 std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
-                                 double min_alpha, double max_alpha, std::chrono::steady_clock::time_point deadline,
+                                 double min_alpha, double max_alpha, const Budget& budget,
                                  std::vector<double>& length) {
   constexpr int kSteps = 16;           // per piece, for its turning and length
   constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
@@ -92,7 +92,7 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
   for (std::size_t i = 0; i < n; ++i) {
     // (out of time: no chain; a hostile stroke's shots, each end of a segment with a cusp
     // placed to 1e-10 of its length, took seconds past the budget)
-    if (std::chrono::steady_clock::now() >= deadline) return {};
+    if (budget.spent()) return {};
     const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
     const bool free_end = kappa[(i + 1) % joints] != 0.0;
     const double end_sign = sign(turning[i]);
@@ -166,17 +166,17 @@ std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double 
 // inside if any) and the chain shot again, at most kMaxHalvings times.
 std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
                                        double min_alpha, double max_alpha, bool halve,
-                                       std::chrono::steady_clock::time_point deadline) {
+                                       const Budget& budget) {
   constexpr double kShotLengthRatio = 2.0;
   constexpr int kMaxHalvings = 6;
   for (int halvings = 0;; ++halvings) {
     std::vector<double> length;
-    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, deadline, length);
+    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, budget, length);
     const std::size_t n = chain.size();
     std::size_t astray = n;
     for (std::size_t i = 0; i < n && astray == n; ++i)
       if (!(chain[i].length() < kShotLengthRatio * length[i] && kShotLengthRatio * chain[i].length() > length[i])) astray = i;
-    if (!halve || astray == n || halvings >= kMaxHalvings || std::chrono::steady_clock::now() >= deadline) return chain;
+    if (!halve || astray == n || halvings >= kMaxHalvings || budget.spent()) return chain;
     const double t0 = spans[astray].t0, t1 = spans[astray].t1;
     double t = halvingPoint(spline, t0, t1).t;
     if (t < t0) t += spline.tMax() - spline.tMin();  // (wrapped past a closed spline's seam)

@@ -4,12 +4,12 @@
 // spline in intrinsic form, segment by segment, each shot from the previous one's end
 // towards the next split point. G2 by construction.
 
-#include <chrono>
 #include <optional>
 #include <vector>
 
 #include "core/bspline.h"
 #include "core/la_segment.h"
+#include "fitting/budget.h"
 #include "fitting/pipeline.h"
 
 namespace la {
@@ -18,11 +18,11 @@ namespace la {
 /// piece turning against both its neighbours is cut at its largest curvature, and
 /// `spans` updated). With `halve`, where a shot segment comes out far longer or shorter
 /// than the spline between its splits (it set off away from the points), its span is
-/// halved and the chain shot again, unless `deadline` has passed (the time budget).
-/// Empty if some piece has no LA segment, or `deadline` passes before the chain is shot.
+/// halved and the chain shot again, unless `budget` is spent.
+/// Empty if some piece has no LA segment, or `budget` is spent before the chain is shot.
 std::vector<LaSegment> chainFromSpline(
     const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed, double min_alpha, double max_alpha,
-    bool halve, std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max());
+    bool halve, const Budget& budget = {});
 
 /// One LA segment from `start` with tangent `theta0` and curvature `kappa_start`,
 /// turning by `turning`, whose end curvature (unless `kappa_end` is 0: an inflection end

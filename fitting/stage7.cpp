@@ -114,7 +114,7 @@ SelectionOptions stage7Selection(const FitContext& context) {
   co.least_decrease = negligible_move * negligible_move;
   so.max_extrema = options.segmentation.max_extrema;
   so.diagonal = context.diagonal;
-  so.deadline = co.deadline = context.deadline;
+  so.budget = co.budget = context.budget;
   // (DESIGN.md section 6: a bend tighter than the tolerance is a corner; a hair inside,
   // so that rounding leaves no radius under it)
   if (context.radius_bound != RadiusBound::kFree) co.max_curvature = (1.0 - 1e-9) / context.tolerance;
@@ -235,7 +235,7 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
   // (with `halve`, the spline's spans where a shot segment sets off astray are halved)
   auto startFromSpline = [&](bool halve) {
     std::vector<PieceReport> spans = fit.spans;
-    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve, context.deadline);
+    start = chainFromSpline(*fit.spline, spans, part.closed, options.min_alpha, options.max_alpha, halve, context.budget);
     feet = feetOnSpans(spans, fit.parameters, part.closed, fit.spline->tMax() - fit.spline->tMin());
   };
   if (spline_start == SplineStart::kHalved) {

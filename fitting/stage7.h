@@ -42,7 +42,7 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
 
 /// Stage 7's selection options: the tolerance less a margin, the alpha range and the
 /// bound on curvature, the points and iterations per fit, the noise, the cap and the
-/// deadline; closure, fixed ends and corners are the caller's.
+/// budget; closure, fixed ends and corners are the caller's.
 SelectionOptions stage7Selection(const FitContext& context);
 
 /// A curvature above this many times 1 / tolerance bends tighter than the tolerance (the

@@ -174,6 +174,41 @@ TEST(ChainFit, StopsWhereAStepLowersTheSumOfSquaresByLessThanLeastDecrease) {
   for (std::size_t k = 0; k < points.size(); ++k) EXPECT_NEAR(db[k], da[k], visible) << "point " << k;
 }
 
+// A work budget (fitting/budget.h) stops the fit after the steps it allows, however long
+// each takes: every step charges its Jacobian's size to the meter, and a budget of three
+// steps' work gives the chain after three steps, the same each time (the pipeline gives
+// a path a share of the work another took; by wall time, the share ended at another step
+// under another load, and a noisy stroke came out with 9, 8 or 3 segments).
+TEST(ChainFit, AWorkBudgetStopsTheFitAfterTheStepsItAllows) {
+  const NoisyInflectionChain c;
+  WorkMeter whole_work;
+  ChainFitOptions whole;
+  whole.max_iterations = 200;
+  whole.budget.meter = &whole_work;
+  const ChainFitResult all = fitChain(c.start, c.points, {}, whole);
+  ASSERT_TRUE(all.report.usable()) << all.report.message;
+  ASSERT_GT(all.report.iterations, 3);
+  const std::int64_t per_step = whole_work.done / all.report.iterations;
+  ASSERT_GT(per_step, 0);
+  EXPECT_EQ(per_step * all.report.iterations, whole_work.done);  // (every step's Jacobian the same size)
+  std::vector<ChainFitResult> stopped;
+  for (int run = 0; run < 2; ++run) {
+    WorkMeter work;
+    ChainFitOptions three_steps = whole;
+    three_steps.budget = {.meter = &work, .work_limit = 3 * per_step};
+    stopped.push_back(fitChain(c.start, c.points, {}, three_steps));
+    EXPECT_EQ(stopped.back().report.iterations, 3);
+    EXPECT_EQ(work.done, 3 * per_step);
+  }
+  ASSERT_EQ(stopped[0].segments.size(), all.segments.size());
+  EXPECT_GT(stopped[0].max_distance, all.max_distance);  // (stopped short of the optimum)
+  for (std::size_t i = 0; i < all.segments.size(); ++i) {
+    EXPECT_EQ(stopped[0].segments[i].alpha(), stopped[1].segments[i].alpha()) << "segment " << i;
+    EXPECT_EQ(stopped[0].segments[i].length(), stopped[1].segments[i].length()) << "segment " << i;
+    EXPECT_EQ(stopped[0].segments[i].kappaStart(), stopped[1].segments[i].kappaStart()) << "segment " << i;
+  }
+}
+
 // The result does not depend on where the points are or on their scale: moving and
 // scaling the points and the start chain moves and scales the fitted chain.
 TEST(ChainFit, InvariantUnderSimilarity) {
