@@ -47,7 +47,7 @@ struct FitContext {
   StageTimings& timings;
   /// Once it is spent (the time budget, FitOptions::time_budget_ms, or a path's share of
   /// work), stage 7 stops editing and keeps the best G2 chain it has.
-  Budget budget;
+  Budget budget{};
   RadiusBound radius_bound = RadiusBound::kBoundThenFree;
 
   G2Options g2() const { return g2OptionsOf(options, diagonal); }
