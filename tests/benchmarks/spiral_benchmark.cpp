@@ -7,12 +7,15 @@
 // spiral keeps it (truth_kept_missed: the true curve is within the tolerance of every
 // sample, the fit is not; where the noise puts some sample further than the tolerance
 // from the truth itself, no fair curve need keep it), those with more than 2 segments a
-// turn, those fitted as one segment, and the fit time per spiral (median, p90, max; one
-// core).
+// turn, those fitted as one segment, those bending tighter than the tolerance anywhere,
+// and the fit time per spiral (median, p90, max; one core).
 //
 // Also Archimedean spirals drawn out from a tight centre (r = 5 + 60 theta / 2 pi: no LA
 // curve), the same turns, points and noise, the points at equal steps of the angle, so
-// their centre is sampled ten times as densely as their outer turns (BM_Archimedean).
+// their centre is sampled ten times as densely as their outer turns (BM_Archimedean);
+// and the logarithmic spirals at the loose tolerances a user sets with the app's slider,
+// 2, 5 and 8% of the diagonal (BM_LogSpiralsLoose), where their inner turns bend tighter
+// than the tolerance and become corners.
 //
 //   build/tests/benchmarks/spiral_benchmark
 
@@ -102,19 +105,20 @@ std::vector<Spiral> spiralsOf(double alpha) {
   return out;
 }
 
-void fitAll(benchmark::State& state, const std::vector<Spiral>& spirals) {
-  int missed = 0, truth_kept_missed = 0, too_many = 0, one = 0;
+void fitAll(benchmark::State& state, const std::vector<Spiral>& spirals, const FitOptions& options = {}) {
+  int missed = 0, truth_kept_missed = 0, too_many = 0, one = 0, tighter = 0;
   std::vector<double> ms;
   for (auto _ : state) {
-    missed = truth_kept_missed = too_many = one = 0;
+    missed = truth_kept_missed = too_many = one = tighter = 0;
     ms.clear();
     for (const Spiral& s : spirals) {
-      const FitResult r = fitStroke(s.stroke);
+      const FitResult r = fitStroke(s.stroke, options);
       ms.push_back(r.timings.total_ms);
       missed += r.quality.max_dev > r.tolerance;
       truth_kept_missed += r.quality.max_dev > r.tolerance && s.truth_deviation <= r.tolerance;
       too_many += static_cast<double>(r.curve.pieces.size()) > 2.0 * s.turns;
       one += r.curve.pieces.size() == 1;
+      tighter += r.quality.min_radius * (1.0 + 1e-6) < r.tolerance;
     }
   }
   std::sort(ms.begin(), ms.end());
@@ -123,6 +127,7 @@ void fitAll(benchmark::State& state, const std::vector<Spiral>& spirals) {
   state.counters["truth_kept_missed"] = truth_kept_missed;
   state.counters["over_2_a_turn"] = too_many;
   state.counters["one_segment"] = one;
+  state.counters["bends_tighter"] = tighter;
   state.counters["ms_median"] = ms[ms.size() / 2];
   state.counters["ms_p90"] = ms[ms.size() * 9 / 10];
   state.counters["ms_max"] = ms.back();
@@ -132,6 +137,14 @@ void BM_Archimedean(benchmark::State& state) { fitAll(state, archimedeanSpirals(
 // alpha = range / 4: -2, -1, 0, 0.5, 1, 2
 BENCHMARK(BM_Spirals)->Arg(-8)->Arg(-4)->Arg(0)->Arg(2)->Arg(4)->Arg(8)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Archimedean)->Iterations(1)->Unit(benchmark::kMillisecond);
+// The logarithmic spirals (alpha 1) at a loose tolerance, range % of the diagonal: their
+// inner turns then bend tighter than the tolerance, and become corners.
+void BM_LogSpiralsLoose(benchmark::State& state) {
+  FitOptions options;
+  options.tolerance_fraction = static_cast<double>(state.range(0)) / 100.0;
+  fitAll(state, spiralsOf(1.0), options);
+}
+BENCHMARK(BM_LogSpiralsLoose)->Arg(2)->Arg(5)->Arg(8)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace la
