@@ -350,10 +350,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // that chain, whatever corners the clean-up read in it (fewest extrema, then fewest
   // segments: one segment comes first; the tight inner turns of a spiral pass for
   // corners). One that misses it is kept for the end, in case the parts miss it by more
-  // (below).
+  // (below). (Not in a fit again with corners at the first fit's tight bends: the first
+  // fit tried the whole stroke as one segment under the same bound.)
   std::optional<PartFit> one;
   Part whole;  // (the whole stroke as one part: only where it is tried so)
-  if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.budget.spent()) {
+  if (polishing && parts.size() > 1 && !r.cleaned.closed && !context.budget.spent() && corners_at.empty()) {
     const auto tp = Clock::now();
     whole.points = r.cleaned.points;
     one = oneSegmentPart(whole, context);
