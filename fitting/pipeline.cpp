@@ -233,10 +233,10 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (one && one->max_dev <= r.tolerance) return std::move(*one);
       if (split && split->max_dev <= r.tolerance) return std::move(*split);
       // (one segment that misses with a bend on the bound of the radius, by no more than
-      // the part is fitted again without the bound for (fitOneBounded): the points need
-      // a tighter bend, which no chain under the bound follows either. The chains from
-      // stages 2-6 are not tried: on a logarithmic spiral of three turns at a tolerance
-      // of 8% they took 180 ms, to end 93 tolerances off.)
+      // kBoundsMiss: fitOneBounded fits the part again without the bound. The points need
+      // a tighter bend there, which no chain under the bound follows either, so the
+      // chains from stages 2-6 are not tried: on a logarithmic spiral of three turns at a
+      // tolerance of 8% they took 180 ms, to end 93 tolerances off.)
       if (one && context.radius_bound == RadiusBound::kBoundThenFree &&
           largestKappa(one->segments) * r.tolerance > kOnTheBound && worstOf(*one, part) <= kBoundsMiss * r.tolerance)
         return split && worstOf(*split, part) < worstOf(*one, part) ? std::move(*split) : std::move(*one);
