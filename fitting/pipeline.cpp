@@ -442,6 +442,40 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (arc && arc->g2.usable() && worstOf(*arc, parts[k]) <= within && !bendsTighterThan(arc->segments, r.tolerance))
         fit = std::move(*arc);
     }
+    // Then each open part's chain gives way to the circular arc between its ends that
+    // passes closest to its points, where that keeps the selection's tolerance and the
+    // bound, and the curve's curvature reverses no more often (QualityFigures::
+    // extrema_dense). An arc has no trend: a drawn polygon's sides, each an LA segment
+    // with a slight one, reversed it at every other corner. Each arc is taken where it
+    // adds no reversal (one that removes none can let the next one remove some); all are
+    // kept only where together they remove a reversal or a segment.
+    auto reversals = [&] {
+      Curve curve;
+      curve.closed = r.cleaned.closed;
+      for (std::size_t k = 0; k < parts.size(); ++k)
+        for (std::size_t i = 0; i < fits[k].segments.size(); ++i)
+          curve.pieces.push_back({fits[k].segments[i], i == 0 && parts[k].starts_at_corner});
+      return curvatureReversals(curve, diag);
+    };
+    const int before = reversals();
+    int now = before;
+    std::size_t fewer_segments = 0;
+    const std::vector<PartFit> without_arcs = fits;
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      PartFit& fit = fits[k];
+      if (parts[k].closed || (fit.segments.size() == 1 && (fit.segments[0].isStraight() || fit.segments[0].isCircular())))
+        continue;
+      Part between = parts[k];  // (its corners where the chain has them)
+      if (between.starts_at_corner) between.points.front() = fit.segments.front().start();
+      if (between.ends_at_corner) between.points.back() = fit.segments.back().end();
+      std::optional<PartFit> arc = closestArcPart(between, context, "a circular arc, for fewer extrema");
+      if (!arc || !(worstOf(*arc, parts[k]) <= within) || bendsTighterThan(arc->segments, r.tolerance)) continue;
+      std::swap(fit, *arc);
+      const int with_arc = reversals();
+      if (with_arc <= now) now = with_arc, fewer_segments += arc->segments.size() - 1;
+      else std::swap(fit, *arc);
+    }
+    if (now == before && fewer_segments == 0) fits = without_arcs;
   }
   // The stroke's one segment that missed the tolerance, where the parts miss it by more
   // (their deviation or stray), as a part's near miss is kept (fitOneWith's orOne): a

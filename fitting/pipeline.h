@@ -7,7 +7,8 @@
 //   - G2 at every joint but the corners;
 //   - the user's limits: at most segmentation.max_extrema curvature extrema per smooth
 //     part (a hard cap: where the tolerance cannot be kept under it, the cap wins and the
-//     figures report the deviation), every alpha in [min_alpha, max_alpha];
+//     figures report the deviation), every alpha in [min_alpha, max_alpha] (lines and
+//     circular arcs, the family's alpha = infinity, apart);
 //   - every point within the tolerance, no bend tighter than it (tighter is a corner);
 //   - the fewest curvature extrema, then the fewest segments, then the least squares.
 // The last line is approached, not proven: stage 7's edits merge at every weak

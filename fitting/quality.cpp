@@ -311,6 +311,13 @@ class ReversalCounter {
 
 }  // namespace
 
+int curvatureReversals(const Curve& curve, double diagonal) {
+  ReversalCounter reversals(kSmallestCurvatureChange / diagonal);
+  for (const CurvePiece& piece : curve.pieces) reversals.addSegment(piece.segment);
+  if (curve.closed && !curve.pieces.empty()) reversals.add(curve.pieces[0].segment.kappaStart());
+  return reversals.reversals(curve.closed);
+}
+
 int curvatureTrend(const LaSegment& s, double diagonal) {
   const double a = s.kappaStart(), b = s.kappaEnd();
   if (std::abs(b - a) < kFlatTrend * std::max({std::abs(a), std::abs(b), 1.0 / diagonal})) return 0;
@@ -387,13 +394,8 @@ QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& point
     q.extrema_per_part.push_back(static_cast<int>(joints.size()));
   for (int count : q.extrema_per_part) q.max_extrema_per_part = std::max(q.max_extrema_per_part, count);
 
-  ReversalCounter reversals(kSmallestCurvatureChange / diag);
-  for (const CurvePiece& piece : curve.pieces) {
-    reversals.addSegment(piece.segment);
-    q.max_abs_kappa = std::max(q.max_abs_kappa, piece.segment.maxAbsKappa());
-  }
-  if (curve.closed && n > 0) reversals.add(curve.pieces[0].segment.kappaStart());
-  q.extrema_dense = reversals.reversals(curve.closed);
+  for (const CurvePiece& piece : curve.pieces) q.max_abs_kappa = std::max(q.max_abs_kappa, piece.segment.maxAbsKappa());
+  q.extrema_dense = curvatureReversals(curve, diag);
   q.min_radius = q.max_abs_kappa > 0.0 ? 1.0 / q.max_abs_kappa : INFINITY;
   // inflections: sign changes of curvature, also across corners (the shape inflects there too)
   auto sign = [](double k) { return k > 0 ? 1 : (k < 0 ? -1 : 0); };

@@ -52,6 +52,10 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
 
+/// The reversals of the curvature along the curve, a jump at a corner against the trend
+/// included (QualityFigures::extrema_dense), against this diagonal.
+int curvatureReversals(const Curve& curve, double diagonal);
+
 /// +1 for curvature rising along the segment, -1 falling, 0 for an arc or a line (its
 /// curvature changes by less than 1e-12 of its larger end value, or of 1 / diagonal).
 int curvatureTrend(const LaSegment& segment, double diagonal);

@@ -200,6 +200,71 @@ std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, c
   return fit;
 }
 
+namespace {
+
+// The distance from q (relative to the chord's middle, u along the chord of length c) to
+// the minor circular arc of curvature kappa over that chord, or to the nearer chord end
+// where the point lies outside the arc's sector. In the chord's frame, so that a nearly
+// straight arc (its centre far away) loses no digits: with hk = sqrt(1 - (kappa c / 2)^2),
+// the signed distance from the circle is (kappa (|q|^2 - c^2/4) - 2 hk q.n) /
+// (1 + sqrt(1 + kappa^2 (|q|^2 - c^2/4) - 2 kappa hk q.n)) (times the sign of kappa),
+// and q is in the sector where |q.u| <= c/2 (1 - kappa cross(u, q) / hk).
+double distanceFromArc(const Vec2& q, const Vec2& u, double c, double kappa) {
+  const Vec2 n(-u.y(), u.x());
+  const double t = q.dot(u), across = cross(u, q), hk = std::sqrt(std::max(0.0, 1.0 - 0.25 * kappa * kappa * c * c));
+  if (std::abs(t) > 0.5 * c * (1.0 - kappa * across / std::max(hk, 1e-300)))
+    return std::min((q + 0.5 * c * u).norm(), (q - 0.5 * c * u).norm());
+  const double power = q.squaredNorm() - 0.25 * c * c, qn = q.dot(n);
+  return std::abs(kappa * power - 2.0 * hk * qn) / (1.0 + std::sqrt(std::max(0.0, 1.0 + kappa * kappa * power - 2.0 * kappa * hk * qn)));
+}
+
+}  // namespace
+
+std::optional<PartFit> closestArcPart(const Part& part, const FitContext& context, const std::string& what) {
+  if (part.closed || part.points.size() < 3) return std::nullopt;
+  const Vec2 a = part.points.front(), b = part.points.back();
+  const double c = (b - a).norm();
+  if (!(c > 0.0)) return std::nullopt;
+  const Vec2 u = (b - a) / c, middle = 0.5 * (a + b);
+  auto worst = [&](double kappa) {
+    double most = 0.0;
+    for (const Vec2& p : part.points) most = std::max(most, distanceFromArc(p - middle, u, c, kappa));
+    return most;
+  };
+  // (a minor arc, no tighter than the bound on the radius where it is promised: the
+  // smallest largest distance by a scan of the curvatures, then golden sections about the
+  // best; the largest distance is a maximum of functions each unimodal in the curvature)
+  double reach = 2.0 / c;
+  if (context.radius_bound != RadiusBound::kFree) reach = std::min(reach, (1.0 - 1e-9) / context.tolerance);
+  constexpr int kScan = 24, kSections = 30;
+  double best = 0.0, best_worst = worst(0.0);
+  for (int k = -kScan; k <= kScan; ++k) {
+    const double kappa = reach * k / kScan, w = worst(kappa);
+    if (w < best_worst) best = kappa, best_worst = w;
+  }
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = std::max(-reach, best - reach / kScan), hi = std::min(reach, best + reach / kScan);
+  double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo), w1 = worst(x1), w2 = worst(x2);
+  for (int k = 0; k < kSections; ++k) {
+    if (w1 < w2) {
+      hi = x2, x2 = x1, w2 = w1;
+      x1 = hi - golden * (hi - lo), w1 = worst(x1);
+    } else {
+      lo = x1, x1 = x2, w1 = w2;
+      x2 = lo + golden * (hi - lo), w2 = worst(x2);
+    }
+  }
+  const double chosen = std::min(w1, w2) < best_worst ? (w1 < w2 ? x1 : x2) : best;
+  best_worst = std::min({best_worst, w1, w2});
+  const double half = std::asin(std::min(1.0, 0.5 * std::abs(chosen) * c));
+  const double length = chosen == 0.0 ? c : 2.0 * half / std::abs(chosen);
+  ChainFitResult alone;  // (an arc no fit made)
+  alone.segments = {LaSegment::arc(length, a, angleOf(b - a) - 0.5 * chosen * length, chosen)};
+  PartFit fit = partFitOf(alone, what);
+  fit.max_dev = best_worst;  // (the points' exact distances from the arc)
+  return fit;
+}
+
 void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
   if (part.points.size() < 3 || !overCap(fit.segments, part.closed, context)) return;
   if (part.closed) {

@@ -27,7 +27,10 @@ std::optional<FitResult> resolvePart(const FitResult& fit, std::size_t piece, co
     const LaSegment& seg = fit.curve.pieces[i].segment;
     chain.joints.push_back(seg.start());
     chain.angles.push_back(i == first ? seg.theta0() : chain.angles.back() + wrapAngle(seg.theta0() - chain.angles.back()));
-    chain.pieces.push_back({fit.pieces[i].kind, seg.alpha()});
+    // (a circular arc re-solved between moved ends is no arc: it takes the options'
+    // largest alpha, the family's nearest to a circle's, as its law)
+    const bool arc = seg.isCircular() && !seg.isStraight();
+    chain.pieces.push_back({fit.pieces[i].kind, arc ? options.max_alpha : seg.alpha()});
   }
   const LaSegment& end = fit.curve.pieces[last].segment;
   chain.joints.push_back(chain.closed ? chain.joints.front() : end.end());

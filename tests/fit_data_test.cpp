@@ -229,11 +229,12 @@ void fitDataSet(const DataSet& set) {
       EXPECT_TRUE(check(r.quality.max_dev <= r.tolerance * (1.0 + kDeviationAllowance + expect.known_miss),
                         "max_dev > tolerance"))
           << where << ": max_dev " << r.quality.max_dev << " > tolerance " << r.tolerance << " (ratio " << ratio << ")";
-      // (DESIGN.md section 6: no bend tighter than the tolerance; alpha within the options')
+      // (DESIGN.md section 6: no bend tighter than the tolerance; alpha within the options',
+      // lines and circular arcs apart: alpha infinite)
       EXPECT_TRUE(check(r.quality.min_radius >= r.tolerance * (1.0 - kDeviationAllowance), "bends tighter"))
           << where << ": radius " << r.quality.min_radius << " < tolerance " << r.tolerance;
       for (const CurvePiece& p : r.curve.pieces)
-        EXPECT_TRUE(check(p.segment.isStraight() || (p.segment.alpha() >= options.min_alpha && p.segment.alpha() <= options.max_alpha),
+        EXPECT_TRUE(check(p.segment.isCircular() || (p.segment.alpha() >= options.min_alpha && p.segment.alpha() <= options.max_alpha),
                           "alpha out of range"))
             << where << ": a segment's alpha " << p.segment.alpha() << " outside [" << options.min_alpha << ", "
             << options.max_alpha << "]";
