@@ -432,13 +432,18 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // before it, a drawn star's side as one segment left its neighbour outside.)
   if (polishing && !context.budget.spent()) {
     const double within = stage7Selection(context).tolerance;
+    // (part k with its ends at its chain's corners)
+    auto betweenCorners = [&](std::size_t k) {
+      Part between = parts[k];
+      if (between.starts_at_corner) between.points.front() = fits[k].segments.front().start();
+      if (between.ends_at_corner) between.points.back() = fits[k].segments.back().end();
+      return between;
+    };
     for (std::size_t k = 0; k < parts.size(); ++k) {
       PartFit& fit = fits[k];
       if (parts[k].closed || fit.segments.size() < 2 || !overExtremaCap(curveOf(fit.segments, false), diag, 0)) continue;
-      Part between = parts[k];  // (its corners where the chain has them)
-      if (between.starts_at_corner) between.points.front() = fit.segments.front().start();
-      if (between.ends_at_corner) between.points.back() = fit.segments.back().end();
-      std::optional<PartFit> arc = oneArcPart(between, context, "one LA segment, for fewer extrema", kArcStartMiss * r.tolerance);
+      std::optional<PartFit> arc =
+          oneArcPart(betweenCorners(k), context, "one LA segment, for fewer extrema", kArcStartMiss * r.tolerance);
       if (arc && arc->g2.usable() && worstOf(*arc, parts[k]) <= within && !bendsTighterThan(arc->segments, r.tolerance))
         fit = std::move(*arc);
     }
@@ -465,10 +470,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       PartFit& fit = fits[k];
       if (parts[k].closed || (fit.segments.size() == 1 && (fit.segments[0].isStraight() || fit.segments[0].isCircular())))
         continue;
-      Part between = parts[k];  // (its corners where the chain has them)
-      if (between.starts_at_corner) between.points.front() = fit.segments.front().start();
-      if (between.ends_at_corner) between.points.back() = fit.segments.back().end();
-      std::optional<PartFit> arc = closestArcPart(between, context, "a circular arc, for fewer extrema");
+      std::optional<PartFit> arc = closestArcPart(betweenCorners(k), context, "a circular arc, for fewer extrema");
       if (!arc || !(worstOf(*arc, parts[k]) <= within) || bendsTighterThan(arc->segments, r.tolerance)) continue;
       std::swap(fit, *arc);
       const int with_arc = reversals();

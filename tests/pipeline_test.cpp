@@ -851,28 +851,33 @@ TEST(PipelineFairness, ABendUnderTheCornerAngleIsNoTighterThanTheToleranceTells)
   }
 }
 
-// A pointed arch: two circular arcs of radius 100 meeting at its apex, 12 samples a side,
-// with noise of 0.5 units, 12 seeds. Each side is one arc: no curvature extremum. The
-// selection merges only at weak extrema, and a side's chain kept a strong one where the
-// noise bent it (seed 2 here; 3 of 12 with numpy's noise): a side curling into its
-// corner. Now each side is one LA segment.
-TEST(PipelineFairness, APointedArchsSidesHaveNoCurvatureExtremum) {
-  constexpr double kWidth = 100.0;
+// A pointed arch: two circular arcs of radius kArchRadius meeting at its apex, 12 samples
+// a side, with noise of 0.5 units (seed `seed`).
+constexpr double kArchRadius = 100.0;
+std::vector<Vec2> pointedArch(unsigned seed) {
   constexpr int kPerSide = 12;
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  std::vector<Vec2> points;
+  for (int k = 0; k < 2 * kPerSide - 1; ++k) {
+    // (the left side about (kArchRadius, 0) from angle pi to 2 pi / 3, the right one
+    // about the origin from pi / 3 to 0)
+    const double s = static_cast<double>(k < kPerSide ? k : k - kPerSide + 1) / (kPerSide - 1);
+    const Vec2 p = k < kPerSide ? Vec2(Vec2(kArchRadius, 0.0) + kArchRadius * unitVector(std::numbers::pi * (1.0 - s / 3.0)))
+                                : Vec2(kArchRadius * unitVector(std::numbers::pi / 3.0 * (1.0 - s)));
+    points.push_back(p + Vec2(noise(rng), noise(rng)));
+  }
+  return points;
+}
+
+// Each side of the arch (12 seeds) is one arc: no curvature extremum. The selection merges
+// only at weak extrema, and a side's chain kept a strong one where the noise bent it
+// (seed 2 here; 3 of 12 with numpy's noise): a side curling into its corner. Now each side
+// is one LA segment.
+TEST(PipelineFairness, APointedArchsSidesHaveNoCurvatureExtremum) {
   for (unsigned seed = 1; seed <= 12; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> noise(0.0, 0.5);
-    std::vector<Vec2> points;
-    for (int k = 0; k < 2 * kPerSide - 1; ++k) {
-      // (the left side about (kWidth, 0) from angle pi to 2 pi / 3, the right one about
-      // the origin from pi / 3 to 0)
-      const double s = static_cast<double>(k < kPerSide ? k : k - kPerSide + 1) / (kPerSide - 1);
-      const Vec2 p = k < kPerSide ? Vec2(Vec2(kWidth, 0.0) + kWidth * unitVector(std::numbers::pi * (1.0 - s / 3.0)))
-                                  : Vec2(kWidth * unitVector(std::numbers::pi / 3.0 * (1.0 - s)));
-      points.push_back(p + Vec2(noise(rng), noise(rng)));
-    }
-    const FitResult r = fit(points, FitOptions{});
+    const FitResult r = fit(pointedArch(seed), FitOptions{});
     ASSERT_FALSE(r.curve.pieces.empty());
     EXPECT_EQ(r.quality.corners, 1) << describeFit(r);
     EXPECT_EQ(r.quality.max_extrema_per_part, 0) << describeFit(r);
@@ -886,25 +891,14 @@ TEST(PipelineFairness, APointedArchsSidesHaveNoCurvatureExtremum) {
 // As LA segments, the sides' slight trends reversed the curvature at the apex for every
 // one of the 12 seeds (checked against the pipeline without the arcs).
 TEST(PipelineFairness, APointedArchsSidesAreArcsWhoseCurvatureNeverReverses) {
-  constexpr double kWidth = 100.0;
-  constexpr int kPerSide = 12;
   for (unsigned seed = 1; seed <= 12; ++seed) {
     SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> noise(0.0, 0.5);
-    std::vector<Vec2> points;
-    for (int k = 0; k < 2 * kPerSide - 1; ++k) {
-      const double s = static_cast<double>(k < kPerSide ? k : k - kPerSide + 1) / (kPerSide - 1);
-      const Vec2 p = k < kPerSide ? Vec2(Vec2(kWidth, 0.0) + kWidth * unitVector(std::numbers::pi * (1.0 - s / 3.0)))
-                                  : Vec2(kWidth * unitVector(std::numbers::pi / 3.0 * (1.0 - s)));
-      points.push_back(p + Vec2(noise(rng), noise(rng)));
-    }
-    const FitResult r = fit(points, FitOptions{});
+    const FitResult r = fit(pointedArch(seed), FitOptions{});
     ASSERT_EQ(r.curve.pieces.size(), 2u) << describeFit(r);
     for (const CurvePiece& piece : r.curve.pieces) {
       EXPECT_TRUE(piece.segment.isCircular()) << describeFit(r);
-      // (the arcs' radius, 100, within the noise's reach)
-      EXPECT_NEAR(1.0 / std::abs(piece.segment.kappaStart()), kWidth, 0.2 * kWidth) << describeFit(r);
+      // (the arcs' radius within the noise's reach)
+      EXPECT_NEAR(1.0 / std::abs(piece.segment.kappaStart()), kArchRadius, 0.2 * kArchRadius) << describeFit(r);
     }
     EXPECT_EQ(r.quality.extrema_dense, 0) << describeFit(r);
     EXPECT_LE(r.quality.max_dev, r.tolerance) << describeFit(r);
