@@ -12,13 +12,14 @@
 
 namespace la {
 
+using Clock = std::chrono::steady_clock;
+
 /// The work a fit has done: one per fit, shared by all its budgets.
 struct WorkMeter {
   std::int64_t done = 0;
 };
 
 struct Budget {
-  using Clock = std::chrono::steady_clock;
   static constexpr std::int64_t kNoLimit = std::numeric_limits<std::int64_t>::max();
 
   Clock::time_point deadline = Clock::time_point::max();  // max(): no time budget

@@ -17,8 +17,6 @@
 
 namespace la {
 
-using Clock = std::chrono::steady_clock;
-
 inline double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }

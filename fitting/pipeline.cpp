@@ -208,6 +208,12 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   auto oneBeats = [&](PartFit& one, const Part& part, double others) {
     return one.g2.usable() && !(others <= r.tolerance) && worstOf(one, part) < others;
   };
+  // A part's chain that misses the tolerance, by at most kBoundsMiss, with a joint on the
+  // bound of the radius (fitOneBounded fits it again without the bound).
+  auto missesOnTheBound = [&](PartFit& f, const Part& part) {
+    const double miss = worstOf(f, part);
+    return miss > r.tolerance && miss <= kBoundsMiss * r.tolerance && largestKappa(f.segments) * r.tolerance > kOnTheBound;
+  };
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& given) {
     FitContext context = given;
@@ -237,8 +243,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       // a tighter bend there, which no chain under the bound follows either, so the
       // chains from stages 2-6 are not tried: on a logarithmic spiral of three turns at a
       // tolerance of 8% they took 180 ms, to end 93 tolerances off.)
-      if (one && context.radius_bound == RadiusBound::kBoundThenFree &&
-          largestKappa(one->segments) * r.tolerance > kOnTheBound && worstOf(*one, part) <= kBoundsMiss * r.tolerance)
+      if (one && context.radius_bound == RadiusBound::kBoundThenFree && missesOnTheBound(*one, part))
         return split && worstOf(*split, part) < worstOf(*one, part) ? std::move(*split) : std::move(*one);
       // (the chains from stages 2-6 are worth only what beats it, and get a few times the
       // work it took, as much where it misses by a little: a noisy spiral whose true
@@ -326,10 +331,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     const std::size_t room = polish_room;
     PartFit fit = fitOneWith(part, other_starts, context);
     if (!polishing || context.radius_bound != RadiusBound::kBoundThenFree || context.budget.spent() || r.over_polish_limit) return fit;
+    if (!missesOnTheBound(fit, part)) return fit;
     const auto worst = [&](PartFit& f) { return worstOf(f, part); };
-    const double miss = worst(fit);
-    const bool on_bound = largestKappa(fit.segments) * r.tolerance > kOnTheBound;
-    if (!(miss > r.tolerance) || miss > kBoundsMiss * r.tolerance || !on_bound) return fit;
     const std::size_t bounded_room = polish_room;
     polish_room = room;
     FitContext unbounded = context;
@@ -464,20 +467,25 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     };
     const int before = reversals();
     int now = before;
-    std::size_t fewer_segments = 0;
-    const std::vector<PartFit> without_arcs = fits;
+    bool fewer_segments = false;
+    std::vector<std::pair<std::size_t, PartFit>> replaced;  // (each arc's part and the chain it replaced)
     for (std::size_t k = 0; k < parts.size(); ++k) {
       PartFit& fit = fits[k];
-      if (parts[k].closed || (fit.segments.size() == 1 && (fit.segments[0].isStraight() || fit.segments[0].isCircular())))
-        continue;
+      if (parts[k].closed || (fit.segments.size() == 1 && fit.segments[0].isCircular())) continue;  // (a line or an arc)
       std::optional<PartFit> arc = closestArcPart(betweenCorners(k), context, "a circular arc, for fewer extrema");
       if (!arc || !(worstOf(*arc, parts[k]) <= within) || bendsTighterThan(arc->segments, r.tolerance)) continue;
       std::swap(fit, *arc);
       const int with_arc = reversals();
-      if (with_arc <= now) now = with_arc, fewer_segments += arc->segments.size() - 1;
-      else std::swap(fit, *arc);
+      if (with_arc > now) {
+        std::swap(fit, *arc);
+        continue;
+      }
+      now = with_arc;
+      fewer_segments = fewer_segments || arc->segments.size() > 1;
+      replaced.emplace_back(k, std::move(*arc));
     }
-    if (now == before && fewer_segments == 0) fits = without_arcs;
+    if (now == before && !fewer_segments)
+      for (auto& [k, chain] : replaced) fits[k] = std::move(chain);
   }
   // The stroke's one segment that missed the tolerance, where the parts miss it by more
   // (their deviation or stray), as a part's near miss is kept (fitOneWith's orOne): a
