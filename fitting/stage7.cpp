@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -226,9 +227,19 @@ std::optional<PartFit> closestArcPart(const Part& part, const FitContext& contex
   const double c = (b - a).norm();
   if (!(c > 0.0)) return std::nullopt;
   const Vec2 u = (b - a) / c, middle = 0.5 * (a + b);
-  auto worst = [&](double kappa) {
-    double most = 0.0;
-    for (const Vec2& p : part.points) most = std::max(most, distanceFromArc(p - middle, u, c, kappa));
+  // The largest distance of the points from the arc of curvature kappa, or a value above
+  // `above` once one point is that far (the search compares, it needs no larger values
+  // exactly). The point that was farthest last time goes first: it usually is again.
+  std::size_t farthest = 0;
+  auto worst = [&](double kappa, double above = std::numeric_limits<double>::infinity()) {
+    double most = distanceFromArc(part.points[farthest] - middle, u, c, kappa);
+    if (most > above) return most;
+    for (std::size_t i = 0; i < part.points.size(); ++i) {
+      const double d = distanceFromArc(part.points[i] - middle, u, c, kappa);
+      if (d <= most) continue;
+      most = d, farthest = i;
+      if (most > above) break;
+    }
     return most;
   };
   // (a minor arc, no tighter than the bound on the radius where it is promised: the
@@ -237,21 +248,32 @@ std::optional<PartFit> closestArcPart(const Part& part, const FitContext& contex
   double reach = 2.0 / c;
   if (context.radius_bound != RadiusBound::kFree) reach = std::min(reach, (1.0 - 1e-9) / context.tolerance);
   constexpr int kScan = 24, kSections = 30;
-  double best = 0.0, best_worst = worst(0.0);
-  for (int k = -kScan; k <= kScan; ++k) {
-    const double kappa = reach * k / kScan, w = worst(kappa);
-    if (w < best_worst) best = kappa, best_worst = w;
+  // (the scan starts at the circle through the ends and the middle point, so that most
+  // curvatures further off stop at their first point; of equal distances it keeps the
+  // straight chord's, then the smallest curvature's, whatever the order)
+  const Vec2 q = part.points[part.points.size() / 2] - middle;
+  const double qn = cross(u, q), power = q.squaredNorm() - 0.25 * c * c;
+  const double through = -std::copysign(2.0 * std::abs(qn), qn * -power) / std::max(std::hypot(power, c * qn), 1e-300);
+  const int start = std::clamp(static_cast<int>(std::lround(through / reach * kScan)), -kScan, kScan);
+  int best_k = 0;
+  double best_worst = worst(0.0);
+  for (int i = -kScan - 1; i <= kScan; ++i) {
+    const int k = i < -kScan ? start : i;
+    if (k == 0 || (i >= -kScan && k == start)) continue;
+    const double w = worst(reach * k / kScan, best_worst);
+    if (w < best_worst || (w == best_worst && best_k != 0 && k < best_k)) best_k = k, best_worst = w;
   }
+  const double best = reach * best_k / kScan;
   const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
   double lo = std::max(-reach, best - reach / kScan), hi = std::min(reach, best + reach / kScan);
-  double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo), w1 = worst(x1), w2 = worst(x2);
+  double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo), w1 = worst(x1), w2 = worst(x2, w1);
   for (int k = 0; k < kSections; ++k) {
     if (w1 < w2) {
       hi = x2, x2 = x1, w2 = w1;
-      x1 = hi - golden * (hi - lo), w1 = worst(x1);
+      x1 = hi - golden * (hi - lo), w1 = worst(x1, w2);
     } else {
       lo = x1, x1 = x2, w1 = w2;
-      x2 = lo + golden * (hi - lo), w2 = worst(x2);
+      x2 = lo + golden * (hi - lo), w2 = worst(x2, w1);
     }
   }
   const double chosen = std::min(w1, w2) < best_worst ? (w1 < w2 ? x1 : x2) : best;
