@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fitting/model_selection.h"
 #include "fitting/paper_stages.h"
@@ -203,20 +204,28 @@ std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, c
 
 namespace {
 
-// The distance from q (relative to the chord's middle, u along the chord of length c) to
-// the minor circular arc of curvature kappa over that chord, or to the nearer chord end
-// where the point lies outside the arc's sector. In the chord's frame, so that a nearly
-// straight arc (its centre far away) loses no digits: with hk = sqrt(1 - (kappa c / 2)^2),
-// the signed distance from the circle is (kappa (|q|^2 - c^2/4) - 2 hk q.n) /
+// A point in the frame of a chord of length c (q: the point less the chord's middle, u
+// along the chord, n = u turned left): what its distance from any arc over the chord needs.
+struct PointAboutChord {
+  PointAboutChord(const Vec2& q, const Vec2& u, double c)
+      : t(q.dot(u)),
+        across(cross(u, q)),
+        power(q.squaredNorm() - 0.25 * c * c),
+        qn(q.dot(Vec2(-u.y(), u.x()))),
+        to_end(std::min((q + 0.5 * c * u).norm(), (q - 0.5 * c * u).norm())) {}
+  double t, across, power, qn, to_end;
+};
+
+// Its distance from the minor circular arc of curvature kappa over the chord, or from the
+// nearer chord end where it lies outside the arc's sector. In the chord's frame, so that a
+// nearly straight arc (its centre far away) loses no digits: with hk = sqrt(1 - (kappa c /
+// 2)^2), the signed distance from the circle is (kappa (|q|^2 - c^2/4) - 2 hk q.n) /
 // (1 + sqrt(1 + kappa^2 (|q|^2 - c^2/4) - 2 kappa hk q.n)) (times the sign of kappa),
 // and q is in the sector where |q.u| <= c/2 (1 - kappa cross(u, q) / hk).
-double distanceFromArc(const Vec2& q, const Vec2& u, double c, double kappa) {
-  const Vec2 n(-u.y(), u.x());
-  const double t = q.dot(u), across = cross(u, q), hk = std::sqrt(std::max(0.0, 1.0 - 0.25 * kappa * kappa * c * c));
-  if (std::abs(t) > 0.5 * c * (1.0 - kappa * across / std::max(hk, 1e-300)))
-    return std::min((q + 0.5 * c * u).norm(), (q - 0.5 * c * u).norm());
-  const double power = q.squaredNorm() - 0.25 * c * c, qn = q.dot(n);
-  return std::abs(kappa * power - 2.0 * hk * qn) / (1.0 + std::sqrt(std::max(0.0, 1.0 + kappa * kappa * power - 2.0 * kappa * hk * qn)));
+double distanceFromArc(const PointAboutChord& p, double c, double kappa, double hk) {
+  if (std::abs(p.t) > 0.5 * c * (1.0 - kappa * p.across / std::max(hk, 1e-300))) return p.to_end;
+  return std::abs(kappa * p.power - 2.0 * hk * p.qn) /
+         (1.0 + std::sqrt(std::max(0.0, 1.0 + kappa * kappa * p.power - 2.0 * kappa * hk * p.qn)));
 }
 
 }  // namespace
@@ -230,12 +239,16 @@ std::optional<PartFit> closestArcPart(const Part& part, const FitContext& contex
   // The largest distance of the points from the arc of curvature kappa, or a value above
   // `above` once one point is that far (the search compares, it needs no larger values
   // exactly). The point that was farthest last time goes first: it usually is again.
+  std::vector<PointAboutChord> points;
+  points.reserve(part.points.size());
+  for (const Vec2& p : part.points) points.emplace_back(p - middle, u, c);
   std::size_t farthest = 0;
   auto worst = [&](double kappa, double above = std::numeric_limits<double>::infinity()) {
-    double most = distanceFromArc(part.points[farthest] - middle, u, c, kappa);
+    const double hk = std::sqrt(std::max(0.0, 1.0 - 0.25 * kappa * kappa * c * c));
+    double most = distanceFromArc(points[farthest], c, kappa, hk);
     if (most > above) return most;
-    for (std::size_t i = 0; i < part.points.size(); ++i) {
-      const double d = distanceFromArc(part.points[i] - middle, u, c, kappa);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double d = distanceFromArc(points[i], c, kappa, hk);
       if (d <= most) continue;
       most = d, farthest = i;
       if (most > above) break;
