@@ -472,7 +472,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     for (std::size_t k = 0; k < parts.size(); ++k) {
       PartFit& fit = fits[k];
       if (parts[k].closed || (fit.segments.size() == 1 && fit.segments[0].isCircular())) continue;  // (a line or an arc)
-      std::optional<PartFit> arc = closestArcPart(betweenCorners(k), context, "a circular arc, for fewer extrema");
+      std::optional<PartFit> arc = closestArcPart(betweenCorners(k), context, "a circular arc, for fewer extrema", within);
       if (!arc || !(worstOf(*arc, parts[k]) <= within) || bendsTighterThan(arc->segments, r.tolerance)) continue;
       std::swap(fit, *arc);
       const int with_arc = reversals();

@@ -78,8 +78,9 @@ std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, c
 /// closest to its points (the smallest largest distance), no tighter than the bound on the
 /// radius where the context promises it; `what` says why. An arc's curvature is constant:
 /// no trend, so no reversal of it at its ends. Nullopt for a closed part, one of fewer than
-/// 3 points or whose ends meet.
-std::optional<PartFit> closestArcPart(const Part& part, const FitContext& context, const std::string& what);
+/// 3 points or whose ends meet, and where that arc does not keep every point within `limit`.
+std::optional<PartFit> closestArcPart(const Part& part, const FitContext& context, const std::string& what,
+                                      double limit = INFINITY);
 
 /// The cap on extrema wins: a part's chain still over it (a part whose capped chain could
 /// not be snapped onto its corner keeps the chain of stages 2-6) becomes one LA segment

@@ -1,6 +1,7 @@
 // Stage 7's last word on the cap on curvature extrema (fitting/stage7.h, keepTheCap): a
 // part whose chain still keeps more extrema than the cap is replaced by a curve that has
 // none, one LA segment between its ends or, closed, the circle closest to its points.
+// And the circular arc between a part's ends closest to its points (closestArcPart).
 // Parts sampled from chains built with known parameters; distances measured here,
 // independently of the chain fit (tests/test_support.h).
 
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
 
 namespace la {
@@ -97,6 +99,47 @@ TEST(KeepTheCap, AClosedPartUnderACapBelowFourBecomesTheClosestCircle) {
   EXPECT_TRUE(fit.segments.front().isCircular());
   EXPECT_NEAR(1.0 / std::abs(fit.segments.front().kappaStart()), 37.0, 1.5);  // between the half axes
   EXPECT_NEAR(fit.max_dev, maxDistance(fit.segments, part.points), 0.05);
+}
+
+// Points on a circular arc of radius 80 turning 100 degrees: the closest arc between their
+// ends is that arc, with its points on it.
+TEST(ClosestArcPart, PointsOnAnArcGiveThatArc) {
+  const double radius = 80.0, turning = 100.0 * std::numbers::pi / 180.0;
+  Part part;
+  for (int i = 0; i <= 300; ++i) {
+    const double a = -0.5 * std::numbers::pi + turning * i / 300.0;
+    part.points.push_back(Vec2(10.0 + radius * std::cos(a), 20.0 + radius * std::sin(a)));
+  }
+  Context c;
+  const FitContext context = c.of(1.0, boundingBoxDiagonal(part.points));
+  const std::optional<PartFit> arc = closestArcPart(part, context, "test");
+  ASSERT_TRUE(arc.has_value());
+  ASSERT_EQ(arc->segments.size(), 1u);
+  EXPECT_NEAR(arc->segments.front().kappaStart(), 1.0 / radius, 1e-7);
+  EXPECT_NEAR(arc->segments.front().length(), radius * turning, 1e-4);
+  EXPECT_LT(arc->max_dev, 1e-5);
+  EXPECT_LT(maxDistance(arc->segments, part.points), 1e-5);
+}
+
+// Points off any arc (a wave of two extrema, noisy, 400 points): the arc returned within a
+// limit is the one returned without, its deviation the one measured here; below that
+// deviation, none is.
+TEST(ClosestArcPart, ALimitBelowTheClosestArcsDeviationGivesNone) {
+  const std::vector<LaSegment> wave = buildChain({0, 0}, 0.0, 0.004, {{1.0, 150.0, 0.012}, {-1.0, 150.0, 0.004}, {1.0, 150.0, 0.012}});
+  Part part;
+  part.points = sampleChain(wave, 133, 0.2, 3);
+  Context c;
+  const FitContext context = c.of(1.0, boundingBoxDiagonal(part.points));
+  const std::optional<PartFit> free = closestArcPart(part, context, "test");
+  ASSERT_TRUE(free.has_value());
+  const double deviation = maxDistance(free->segments, part.points);
+  EXPECT_NEAR(free->max_dev, deviation, 1e-3 * deviation);
+  ASSERT_GT(deviation, 2.0) << "the wave is nearly an arc: this test shows nothing";
+  const std::optional<PartFit> within = closestArcPart(part, context, "test", 1.01 * free->max_dev);
+  ASSERT_TRUE(within.has_value());
+  EXPECT_EQ(within->segments.front().kappaStart(), free->segments.front().kappaStart());
+  EXPECT_EQ(within->max_dev, free->max_dev);
+  EXPECT_FALSE(closestArcPart(part, context, "test", 0.9 * free->max_dev).has_value());
 }
 
 }  // namespace
