@@ -212,11 +212,10 @@ namespace {
 struct PointAboutChord {
   PointAboutChord(const Vec2& q, const Vec2& u, double c)
       : t(q.dot(u)),
-        across(cross(u, q)),
+        qn(cross(u, q)),
         power(q.squaredNorm() - 0.25 * c * c),
-        qn(q.dot(Vec2(-u.y(), u.x()))),
         to_end(std::min((q + 0.5 * c * u).norm(), (q - 0.5 * c * u).norm())) {}
-  double t, across, power, qn, to_end;
+  double t, qn, power, to_end;  // (q.u, q.n, |q|^2 - c^2/4, the distance to the nearer end)
 };
 
 // Its distance from the minor circular arc of curvature kappa over the chord, or from the
@@ -224,9 +223,9 @@ struct PointAboutChord {
 // nearly straight arc (its centre far away) loses no digits: with hk = sqrt(1 - (kappa c /
 // 2)^2), the signed distance from the circle is (kappa (|q|^2 - c^2/4) - 2 hk q.n) /
 // (1 + sqrt(1 + kappa^2 (|q|^2 - c^2/4) - 2 kappa hk q.n)) (times the sign of kappa),
-// and q is in the sector where |q.u| <= c/2 (1 - kappa cross(u, q) / hk).
+// and q is in the sector where |q.u| <= c/2 (1 - kappa q.n / hk).
 double distanceFromArc(const PointAboutChord& p, double c, double kappa, double hk) {
-  if (std::abs(p.t) > 0.5 * c * (1.0 - kappa * p.across / std::max(hk, 1e-300))) return p.to_end;
+  if (std::abs(p.t) > 0.5 * c * (1.0 - kappa * p.qn / std::max(hk, 1e-300))) return p.to_end;
   return std::abs(kappa * p.power - 2.0 * hk * p.qn) /
          (1.0 + std::sqrt(std::max(0.0, 1.0 + kappa * kappa * p.power - 2.0 * kappa * hk * p.qn)));
 }
@@ -294,11 +293,12 @@ std::optional<PartFit> closestArcPart(const Part& part, const FitContext& contex
   points.reserve(part.points.size());
   for (const Vec2& p : part.points) points.emplace_back(p - middle, u, c);
   // (a minor arc, no tighter than the bound on the radius where it is promised; the scan
-  // from the circle through the ends and the middle point)
+  // from the circle through the ends and the middle point m: on it, kappa m.power =
+  // 2 hk m.qn, so |kappa| = 2 |m.qn| / hypot(m.power, c m.qn), of the sign of m.qn m.power)
   double reach = 2.0 / c;
   if (context.radius_bound != RadiusBound::kFree) reach = std::min(reach, (1.0 - 1e-9) / context.tolerance);
   const PointAboutChord& m = points[points.size() / 2];
-  const double through = -std::copysign(2.0 * std::abs(m.qn), m.qn * -m.power) / std::max(std::hypot(m.power, c * m.qn), 1e-300);
+  const double through = std::copysign(2.0 * std::abs(m.qn), m.qn * m.power) / std::max(std::hypot(m.power, c * m.qn), 1e-300);
   // (the arcs mostly miss: a search over a few points first, which costs a fraction of
   // the search over all, on a 1,000-point stroke a tenth of the fit's time; their arc is
   // no further from them than the closest arc to all)
