@@ -191,7 +191,6 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   }
 
   std::vector<Part> parts = splitAtCorners(r.cleaned);
-  r.curve.closed = r.cleaned.closed;
   const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
@@ -349,6 +348,15 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     return fit;
   };
   std::vector<PartFit> fits;
+  // (the parts' chains as one curve, each part's first segment after its corner)
+  auto curveOfParts = [&] {
+    Curve curve;
+    curve.closed = r.cleaned.closed;
+    for (std::size_t k = 0; k < parts.size(); ++k)
+      for (std::size_t i = 0; i < fits[k].segments.size(); ++i)
+        curve.pieces.push_back({fits[k].segments[i], i == 0 && parts[k].starts_at_corner});
+    return curve;
+  };
   // An open stroke that one LA segment, or its split, follows within the tolerance is
   // that chain, whatever corners the clean-up read in it (fewest extrema, then fewest
   // segments: one segment comes first; the tight inner turns of a spiral pass for
@@ -457,14 +465,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // with a slight one, reversed it at every other corner. Each arc is taken where it
     // adds no reversal (one that removes none can let the next one remove some); all are
     // kept only where together they remove a reversal or a segment.
-    auto reversals = [&] {
-      Curve curve;
-      curve.closed = r.cleaned.closed;
-      for (std::size_t k = 0; k < parts.size(); ++k)
-        for (std::size_t i = 0; i < fits[k].segments.size(); ++i)
-          curve.pieces.push_back({fits[k].segments[i], i == 0 && parts[k].starts_at_corner});
-      return curvatureReversals(curve, diag);
-    };
+    auto reversals = [&] { return curvatureReversals(curveOfParts(), diag); };
     const int before = reversals();
     int now = before;
     bool fewer_segments = false;
@@ -501,11 +502,11 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       r.cleaned.corners.clear();
     }
   }
+  r.curve = curveOfParts();
   for (std::size_t k = 0; k < parts.size(); ++k) {
     PartFit& fit = fits[k];
     r.warnings.insert(r.warnings.end(), fit.warnings.begin(), fit.warnings.end());
     for (std::size_t i = 0; i < fit.segments.size(); ++i) {
-      r.curve.pieces.push_back({fit.segments[i], i == 0 && parts[k].starts_at_corner});
       fit.reports[i].part = static_cast<int>(k);
       fit.reports[i].spline = fit.spline ? static_cast<int>(r.splines.size()) : -1;
       r.pieces.push_back(fit.reports[i]);

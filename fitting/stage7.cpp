@@ -166,19 +166,35 @@ PartFit partFitOf(const ChainFitResult& chain, const std::string& what) {
   return fit;
 }
 
-std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what, double screen) {
-  if (part.closed || part.points.size() < 3) return std::nullopt;
+namespace {
+
+// The signed curvature of the circle through a, the part's middle point m and b (the
+// chord from a to b of length `chord`): 2 sin(angle at m) / chord; 0 where m is on an end.
+double curvatureThroughMiddle(const Part& part, double chord) {
   const Vec2 a = part.points.front(), m = part.points[part.points.size() / 2], b = part.points.back();
+  const double kappa = 2.0 * cross(m - a, b - m) / ((m - a).norm() * (b - m).norm() * chord);
+  return std::isfinite(kappa) ? kappa : 0.0;
+}
+
+// The minor circular arc of curvature kappa from a to b (turning kappa L, it starts turned
+// back by half of that from the chord).
+LaSegment arcOverChord(const Vec2& a, const Vec2& b, double kappa) {
   const double chord = (b - a).norm();
-  if (!(chord > 0.0)) return std::nullopt;
-  // (the circle through the three points: signed curvature 2 sin(angle at m) / chord; the
-  // arc from a to b, turning kappa L, starts turned back by half of it)
-  double kappa = 2.0 * cross(m - a, b - m) / ((m - a).norm() * (b - m).norm() * chord);
-  if (!std::isfinite(kappa)) kappa = 0.0;
   const double half = std::asin(std::min(1.0, 0.5 * std::abs(kappa) * chord));
   const double length = kappa == 0.0 ? chord : 2.0 * half / std::abs(kappa);
-  const double theta0 = angleOf(b - a) - 0.5 * kappa * length;
-  const LaSegment arc = LaSegment::arc(length, a, theta0, kappa);
+  return LaSegment::arc(length, a, angleOf(b - a) - 0.5 * kappa * length, kappa);
+}
+
+}  // namespace
+
+std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, const std::string& what, double screen) {
+  if (part.closed || part.points.size() < 3) return std::nullopt;
+  const Vec2 a = part.points.front(), b = part.points.back();
+  const double chord = (b - a).norm();
+  if (!(chord > 0.0)) return std::nullopt;
+  const double kappa = curvatureThroughMiddle(part, chord);
+  const LaSegment arc = arcOverChord(a, b, kappa);
+  const double theta0 = arc.theta0();
   if (screen < INFINITY) {
     // (each point's distance from the arc's circle, or its line, is at most its distance
     // from the arc: a pass of a few flops a point, where the distance from the arc itself
@@ -255,7 +271,7 @@ std::pair<double, double> closestArc(const std::vector<PointAboutChord>& points,
     return most;
   };
   constexpr int kScan = 24, kSections = 30;
-  const int start = std::clamp(static_cast<int>(std::lround(through / reach * kScan)), -kScan, kScan);
+  const int start = static_cast<int>(std::lround(std::clamp(through / reach, -1.0, 1.0) * kScan));
   int best_k = 0;
   double best_worst = worst(0.0);
   for (int i = -kScan - 1; i <= kScan; ++i) {
@@ -293,12 +309,10 @@ std::optional<PartFit> closestArcPart(const Part& part, const FitContext& contex
   points.reserve(part.points.size());
   for (const Vec2& p : part.points) points.emplace_back(p - middle, u, c);
   // (a minor arc, no tighter than the bound on the radius where it is promised; the scan
-  // from the circle through the ends and the middle point m: on it, kappa m.power =
-  // 2 hk m.qn, so |kappa| = 2 |m.qn| / hypot(m.power, c m.qn), of the sign of m.qn m.power)
+  // from the circle through the ends and the middle point)
   double reach = 2.0 / c;
   if (context.radius_bound != RadiusBound::kFree) reach = std::min(reach, (1.0 - 1e-9) / context.tolerance);
-  const PointAboutChord& m = points[points.size() / 2];
-  const double through = std::copysign(2.0 * std::abs(m.qn), m.qn * m.power) / std::max(std::hypot(m.power, c * m.qn), 1e-300);
+  const double through = curvatureThroughMiddle(part, c);
   // (the arcs mostly miss: a search over a few points first, which costs a fraction of
   // the search over all, on a 1,000-point stroke a tenth of the fit's time; their arc is
   // no further from them than the closest arc to all)
@@ -309,10 +323,8 @@ std::optional<PartFit> closestArcPart(const Part& part, const FitContext& contex
   }
   const auto [chosen, best_worst] = closestArc(points, c, reach, through);
   if (best_worst > limit) return std::nullopt;
-  const double half = std::asin(std::min(1.0, 0.5 * std::abs(chosen) * c));
-  const double length = chosen == 0.0 ? c : 2.0 * half / std::abs(chosen);
   ChainFitResult alone;  // (an arc no fit made)
-  alone.segments = {LaSegment::arc(length, a, angleOf(b - a) - 0.5 * chosen * length, chosen)};
+  alone.segments = {arcOverChord(a, b, chosen)};
   PartFit fit = partFitOf(alone, what);
   fit.max_dev = best_worst;  // (the points' exact distances from the arc)
   return fit;
