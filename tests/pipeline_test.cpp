@@ -1627,6 +1627,30 @@ TEST(PipelineOneSegment, ANoisySpiralIsOneSegmentWhereItsPartsMissByMore) {
   EXPECT_NEAR(r.curve.pieces[0].segment.alpha(), -2.0, 0.05);
 }
 
+// A logarithmic spiral of 2.5 turns into its centre (2,000 noisy samples) at a loose
+// tolerance, 5% of its diagonal: its inner turn bends tighter than the tolerance and
+// becomes a corner, and the outer turns, beside that corner, are the one LA segment they
+// were sampled from (its alpha near the truth's: the bound on the radius holds its inner
+// end to half the truth's curvature there). They were fitted as a chain: 18 segments,
+// 1.3 tolerances off, in 0.8 s.
+TEST(PipelineOneSegment, ALooseSpiralsOuterTurnsBesideItsCornerAreOneSegment) {
+  const LaSegment truth = LaSegment::withTurning(1.0, 5.0 * std::numbers::pi, {0, 0}, 0.3, 0.004, 0.08);
+  FitOptions loose;
+  loose.tolerance_fraction = 0.05;
+  for (unsigned seed : {1u, 2u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const FitResult r = fitStroke(strokeOf(sampledSegment(truth, 2000, 0.3, seed)), loose);
+    EXPECT_LE(r.quality.max_dev, r.tolerance) << describeFit(r);
+    EXPECT_GE(r.quality.min_radius, (1.0 - 1e-6) * r.tolerance) << describeFit(r);
+    ASSERT_EQ(r.cleaned.corners.size(), 1u) << describeFit(r);
+    ASSERT_GE(r.curve.pieces.size(), 2u) << describeFit(r);
+    EXPECT_LE(r.curve.pieces.size(), 3u) << describeFit(r);
+    const LaSegment& outer = r.curve.pieces.front().segment;
+    EXPECT_GT(std::abs(outer.turning()), 4.0 * std::numbers::pi) << describeFit(r);
+    EXPECT_NEAR(outer.alpha(), 1.0, 0.15) << describeFit(r);
+  }
+}
+
 }  // namespace
 }  // namespace la
 
