@@ -27,9 +27,9 @@ std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& contex
 /// tolerance: stage 7's model selection from it (pinned at the part's corner, if any),
 /// which splits it at its worst points (an LA segment's pieces are LA segments of its
 /// alpha: each split starts where the one segment was) and fits again, until the chain
-/// keeps the tolerance or the edits run out. A spiral that is no LA curve (an Archimedean one from its tight centre) is a few
-/// segments so, where stages 2-6 from its spline set off astray. Nullopt where the
-/// selection has no chain.
+/// keeps the tolerance or the edits run out. A spiral that is no LA curve (an Archimedean
+/// one from its tight centre) is a few segments so, where stages 2-6 from its spline set
+/// off astray. Nullopt where the selection has no chain.
 std::optional<PartFit> splitOneSegment(const PartFit& one, const Part& part, const FitContext& context);
 
 }  // namespace la
