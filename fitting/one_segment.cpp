@@ -83,9 +83,11 @@ std::optional<std::pair<LaSegment, double>> profileSegment(double alpha, double 
 // apart followed along it, `span` long enough that noise cannot turn a chord by much),
 // its length, the mean curvature over a few chords at each end, and the alphas whose
 // segments with those are about as long as the points; then fitted by least squares,
-// from each of those starts until one is within the tolerance, else the closest. Nullopt
-// where the turning changes direction inside (an LA segment inflects at an end only).
-std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOptions& so, double noise) {
+// from each of those starts until one is within the tolerance, else the closest (held at
+// the part's corners as so.fit says). Nullopt where it turns no further than
+// `least_turning`, or changes direction inside (an LA segment inflects at an end only).
+std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOptions& so, double noise,
+                                         double least_turning) {
   constexpr double kChordNoise = 20.0;  // a chord at least this many noise sigmas long
   constexpr double kEnd = 0.03;        // of the chords at each end, for the end curvatures
   // (five unknowns: a step costs little, and a spiral of several turns starts far off)
@@ -142,11 +144,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   const std::size_t last = angle.size() - 1;
   const double middles = 0.5 * static_cast<double>(last + ends[last]) - 0.5 * static_cast<double>(ends[0]);
   const double turning = (angle.back() - angle.front()) * static_cast<double>(m - 1) / middles;
-  // (the selection's merges make a segment turning up to max_turning: only a part turning
-  // further needs this; beside a corner, a part turning a whole turn or more, see
-  // kCornerPartTurning)
-  const bool beside_corner = part.starts_at_corner || part.ends_at_corner;
-  if (!(length > 0.0) || !(std::abs(turning) > (beside_corner ? kCornerPartTurning : so.max_turning))) return std::nullopt;
+  if (!(length > 0.0) || !(std::abs(turning) > least_turning)) return std::nullopt;
   const double sign = turning < 0.0 ? -1.0 : 1.0;
   // (a turn back from the furthest direction so far by more than the noise can turn a
   // chord, sqrt(2) noise / chord per chord, at about 11 sigmas: an inflection inside; a
@@ -220,8 +218,6 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   ChainFitOptions co = so.fit;
   co.min_length = so.tolerance;
   co.max_iterations = kOneSegmentIterations;
-  co.fix_start = part.starts_at_corner;
-  co.fix_end = part.ends_at_corner;
   // (each point's foot where its arc length puts it: found from scratch, a point could
   // take its foot on the neighbouring turn of a spiral)
   std::vector<ChainFoot> feet(m, {0, 0.0});
@@ -285,16 +281,18 @@ std::optional<PartFit> oneSegmentPart(const Part& part, const FitContext& contex
   // (a side between corners is fitted with the others across them, where one segment
   // pinned at both corners may stray; a part beside one corner is pinned there)
   if (part.closed || (part.starts_at_corner && part.ends_at_corner)) return std::nullopt;
-  const std::optional<ChainFitResult> one = oneSegment(part, stage7Selection(context), context.noise.sigma);
+  const SelectionOptions so = stage7Selection(context, part);
+  // (the selection's merges make a segment turning up to max_turning: only a part turning
+  // further needs this; beside a corner, one turning a whole turn or more, kCornerPartTurning)
+  const double least_turning = part.starts_at_corner || part.ends_at_corner ? kCornerPartTurning : so.max_turning;
+  const std::optional<ChainFitResult> one = oneSegment(part, so, context.noise.sigma, least_turning);
   if (!one) return std::nullopt;
   return partFitOf(*one, "one LA segment");
 }
 
 std::optional<PartFit> splitOneSegment(const PartFit& one, const Part& part, const FitContext& context) {
   if (one.segments.size() != 1 || one.feet.size() != part.points.size()) return std::nullopt;
-  SelectionOptions so = stage7Selection(context);
-  so.fit.fix_start = part.starts_at_corner;
-  so.fit.fix_end = part.ends_at_corner;
+  SelectionOptions so = stage7Selection(context, part);
   SelectionResult selected = selectChain(one.segments, part.points, one.feet, so);
   if (selected.fit.report.status == SolveStatus::kBadInput || selected.fit.segments.empty()) return std::nullopt;
   if (selected.fit.max_distance > so.tolerance && std::abs(one.segments.front().turning()) > 2.0 * std::numbers::pi) {

@@ -126,6 +126,14 @@ SelectionOptions stage7Selection(const FitContext& context) {
   return so;
 }
 
+SelectionOptions stage7Selection(const FitContext& context, const Part& part) {
+  SelectionOptions so = stage7Selection(context);
+  so.fit.closed = part.closed;
+  so.fit.fix_start = part.starts_at_corner;
+  so.fit.fix_end = part.ends_at_corner;
+  return so;
+}
+
 double largestKappa(const std::vector<LaSegment>& segments) {
   double most = 0.0;
   for (const LaSegment& s : segments) most = std::max(most, s.maxAbsKappa());
@@ -206,9 +214,7 @@ std::optional<PartFit> oneArcPart(const Part& part, const FitContext& context, c
       if (off > screen) return std::nullopt;
     }
   }
-  ChainFitOptions co = stage7Selection(context).fit;
-  co.fix_start = part.starts_at_corner;
-  co.fix_end = part.ends_at_corner;
+  const ChainFitOptions co = stage7Selection(context, part).fit;
   ChainFitResult r = fitChain({arc}, part.points, {}, co);
   if (r.report.status != SolveStatus::kBadInput && r.improved && co.fix_end)
     r.segments = snapToJoints(r.segments, false, b, context.g2(), kSnapReach * context.tolerance);
@@ -352,12 +358,9 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
   if (!fit.spline) return;  // a straight part
   const FitOptions& options = context.options;
   const double tol = context.tolerance, diag = context.diagonal;
-  SelectionOptions so = stage7Selection(context);
+  SelectionOptions so = stage7Selection(context, part);
   so.refine = choose_segments;
   ChainFitOptions& co = so.fit;
-  co.closed = part.closed;
-  co.fix_start = part.starts_at_corner;
-  co.fix_end = part.ends_at_corner;
   std::vector<LaSegment> start = fit.segments;
   const bool straight = std::any_of(start.begin(), start.end(), [](const LaSegment& s) { return s.isStraight(); });
   std::vector<ChainFoot> feet = fit.feet;

@@ -44,6 +44,8 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
 /// bound on curvature, the points and iterations per fit, the noise, the cap and the
 /// budget; closure, fixed ends and corners are the caller's.
 SelectionOptions stage7Selection(const FitContext& context);
+/// The same for one part's chain: closed as the part is, its ends held at its corners.
+SelectionOptions stage7Selection(const FitContext& context, const Part& part);
 
 /// A curvature above this many times 1 / tolerance bends tighter than the tolerance (the
 /// bound itself, to rounding, does not).
