@@ -642,19 +642,15 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       // end segment trends against its neighbour: the stroke's end curls): the two merged,
       // kept as a monotone merge is (the points do not object) and only where the curve's
       // reversals fall. (On the tolerance alone, as weak extrema are, a ground-truth
-      // chain's real end extremum went too.) Joint 1 is beside a free start, joint n - 1
-      // beside a free end (one joint where n is 2).
-      std::vector<std::size_t> beside_free_end;
-      if (!closed && n >= 2) {
-        if (!options.fit.fix_start && !corner[0]) beside_free_end.push_back(1);
-        if (!options.fit.fix_end && !corner[n] && (n > 2 || beside_free_end.empty())) beside_free_end.push_back(n - 1);
-      }
-      for (const std::size_t j : beside_free_end) {
-        if (corner[j]) continue;
+      // chain's real end extremum went too.)
+      for (std::size_t j : {std::size_t{1}, n - 1}) {
+        if (closed || n < 2 || corner[j] || (j == 1 ? options.fit.fix_start || corner[0] : options.fit.fix_end || corner[n]))
+          continue;
         const std::optional<JointShape> shape = shapeAt(j);
         const int before = curvatureTrend(segs[j - 1], diagonal), after = curvatureTrend(segs[j], diagonal);
         if (shape && !shape->monotone && shape->change >= options.weak_extremum && before != 0 && after == -before)
           candidates.push_back({2.0, EditKind::kMergeCurledEnd, j, 1, false});
+        if (n == 2) break;
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
