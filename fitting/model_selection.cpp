@@ -25,7 +25,7 @@ struct Piece {
 };
 
 // The model selection's simplifying edits.
-enum class EditKind { kCollapse, kMerge, kMergeCurledEnd, kStraighten, kStraightenSide };
+enum class EditKind { kCollapse, kMerge, kStraighten, kStraightenSide };
 
 // Alpha for a segment that gets a zero-curvature end (DESIGN.md section 2: alpha < 0).
 constexpr double kZeroEndAlpha = -1.0;
@@ -541,10 +541,6 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const double f = (r.ssr - out.fit.ssr) / std::max(1, out.fit.unknowns - r.unknowns) / std::max(variance, 1e-300);
     return f < options.significance;
   };
-  const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
-  auto reversals = [&](const std::vector<LaSegment>& segments, const std::vector<ChainCorner>& corners) {
-    return curvatureReversals(curveOf(segments, corners, closed), diagonal);
-  };
   // Collapses (slivers first, the thinnest first) and merges (the weakest joint first),
   // one at a time, until none is kept.
   auto simplify = [&](bool slivers_only) {
@@ -621,36 +617,15 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
             candidates.push_back({turning, EditKind::kStraightenSide, i, count, true});
         }
       }
-      // (at joint j: whether |kappa| runs monotone through it, and else its relative change
-      // towards the nearer of its neighbours' far ends; nullopt at a zero joint)
-      struct JointShape {
-        bool monotone;
-        double change;
-      };
-      auto shapeAt = [&](std::size_t j) -> std::optional<JointShape> {
+      for (std::size_t j = 1; j < n && !slivers_only; ++j) {
+        if (corner[j]) continue;
         const double k0 = std::abs(segs[j - 1].kappaStart()), kj = std::abs(segs[j].kappaStart());
         const double k1 = std::abs(segs[j].kappaEnd());
-        if (kj == 0.0) return std::nullopt;
-        return JointShape{(k0 - kj) * (kj - k1) > 0.0, std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj};
-      };
-      for (std::size_t j = 1; j < n && !slivers_only; ++j) {
-        const std::optional<JointShape> shape = corner[j] ? std::nullopt : shapeAt(j);
-        if (shape && (shape->monotone || shape->change < options.weak_extremum))
-          candidates.push_back({1.0 + (shape->monotone ? 0.0 : shape->change), EditKind::kMerge, j, 1, !shape->monotone});
-      }
-      // A strong curvature extremum at the joint next to a free end of an open chain (the
-      // end segment trends against its neighbour: the stroke's end curls): the two merged,
-      // kept as a monotone merge is (the points do not object) and only where the curve's
-      // reversals fall. (On the tolerance alone, as weak extrema are, a ground-truth
-      // chain's real end extremum went too.)
-      for (std::size_t j : {std::size_t{1}, n - 1}) {
-        if (closed || n < 2 || corner[j] || (j == 1 ? options.fit.fix_start || corner[0] : options.fit.fix_end || corner[n]))
-          continue;
-        const std::optional<JointShape> shape = shapeAt(j);
-        const int before = curvatureTrend(segs[j - 1], diagonal), after = curvatureTrend(segs[j], diagonal);
-        if (shape && !shape->monotone && shape->change >= options.weak_extremum && before != 0 && after == -before)
-          candidates.push_back({2.0, EditKind::kMergeCurledEnd, j, 1, false});
-        if (n == 2) break;
+        if (kj == 0.0) continue;
+        const bool monotone = (k0 - kj) * (kj - k1) > 0.0;
+        const double change = std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj;
+        if (monotone || change < options.weak_extremum)
+          candidates.push_back({1.0 + (monotone ? 0.0 : change), EditKind::kMerge, j, 1, !monotone});
       }
       std::sort(candidates.begin(), candidates.end(),
                 [](const Candidate& a, const Candidate& b) { return a.weakness < b.weakness; });
@@ -660,18 +635,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         const Tried tried{c.kind, c.index, c.count};
         if (std::find(not_kept.begin(), not_kept.end(), tried) != not_kept.end()) continue;
         not_kept.push_back(tried);  // (until it is kept, below)
-        const bool merging = c.kind == EditKind::kMerge || c.kind == EditKind::kMergeCurledEnd;
         const std::optional<Edit> e = c.kind == EditKind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
-                                      : merging ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
+                                      : c.kind == EditKind::kMerge  ? merge(segs, out.fit.feet, out.corners, c.index, options.max_turning)
                                       : c.kind == EditKind::kStraighten ? straighten(segs, out.fit.feet, out.corners, c.index, c.count)
                                                                         : straightenSide(segs, out.fit.feet, out.corners, c.index, c.count);
         const double keep_within = std::max(options.tolerance, out.fit.max_distance);  // (keep's bound)
         if (!e) continue;
         const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
         if (!rebuilt) continue;
-        // (an end's merge is for fewer reversals: not fitted where the edit has as many)
-        if (c.kind == EditKind::kMergeCurledEnd && !(reversals(*rebuilt, cornersOf(e->pieces, out.corners)) < reversals(segs, out.corners)))
-          continue;
         const Nearby nearby = refitNearby(*e, *rebuilt, c.index, keep_within);
         if (nearby.hopeless) continue;
         std::optional<Attempt> r;
@@ -687,16 +658,16 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         if (!r || !keep(r->fit, c.extremum) || (line && r->fit.max_distance > options.tolerance)) continue;
         if (c.kind == EditKind::kStraightenSide && !sideCornersHold(r->fit.segments, points, r->corners, c.index, options.tolerance))
           continue;
-        if (c.kind == EditKind::kMergeCurledEnd && !(reversals(r->fit.segments, r->corners) < reversals(segs, out.corners))) continue;
         not_kept.pop_back();
         take(std::move(*r));
-        ++(c.kind == EditKind::kCollapse ? out.collapses : merging ? out.merges : out.straightenings);
+        ++(c.kind == EditKind::kCollapse ? out.collapses : c.kind == EditKind::kMerge ? out.merges : out.straightenings);
         changed = true;
         break;
       }
     }
   };
   // (no part of the chain has more curvature extrema than the cap)
+  const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
   auto withinCap = [&](const ChainFitResult& r, const std::vector<ChainCorner>& corners) {
     return options.max_extrema < 0 || !overExtremaCap(curveOf(r.segments, corners, closed), diagonal, options.max_extrema);
   };

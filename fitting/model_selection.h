@@ -14,9 +14,7 @@
 //    stub, shorter than the tolerance (no point places it: it only kinks the chain),
 //    and a spike of two stubs between inflections (0 -> kappa -> 0) goes as one;
 //  - merge: two segments whose joint is a weak curvature extremum or none at all (the
-//    curvature passes through it monotonically) become one; so do the two at a strong
-//    extremum next to an open chain's free end (the stroke's end curls), where that
-//    leaves the curvature fewer reversals;
+//    curvature passes through it monotonically) become one;
 //  - straighten: a nearly straight run of one or two segments between zero-curvature
 //    joints or the chain's ends becomes one line (no LA segment has two zero ends, so
 //    the fit could only approach a line there, often with a stub), if the refit is
@@ -44,11 +42,8 @@
 // are kept on the tolerance alone: the fewest extrema come before the least squares
 // (fitting/pipeline.h); under the F-test, the shared data's curves kept 20 more extrema
 // of 802 (extrema_dense), and their bumps 79 of 6,137 (--variants=8). A merge at a
-// strong one is not tried inside a chain: on the tolerance alone, a chain built with 4
-// extrema (one a curvature dip to a third of its neighbours') came back with 3. Next to
-// a free end it is, under the F-test (where the points show the extremum it stays), and
-// kept only where the curve's reversals fall: the shared data's curves, 5,315 -> 5,283
-// extrema and 9,713 -> 9,689 segments, no curve with more (--variants=8).
+// strong one is not tried: on the tolerance alone, a chain built with 4 extrema (one a
+// curvature dip to a third of its neighbours') came back with 3.
 //
 // The cap on curvature extrema (SelectionOptions::max_extrema) is a hard limit, counted
 // per smooth part (between corners) as the quality figures count them

@@ -277,61 +277,6 @@ TEST(SelectChain, StraightensBumpsTheToleranceAllows) {
   EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
 }
 
-// A chain of two segments whose joint, next to the free start, is a strong curvature
-// minimum (kappa0 -> kappa1 over `end_length`, then up to 0.020 over 120), sampled with
-// `per_segment` points each; with the F statistic of merging the two (fitted from the
-// chain and from one segment across both, see MergesAWeakExtremumTheToleranceLetsGo).
-struct CurledEnd {
-  std::vector<LaSegment> truth;
-  std::vector<Vec2> points;
-  ChainFitResult two, one;
-  double f = 0.0;
-  CurledEnd(double kappa0, double kappa1, double end_length, int per_segment)
-      : truth(buildChain({0, 0}, 0.2, kappa0, {{1.0, end_length, kappa1}, {1.0, 120.0, 0.020}})),
-        points(sampleChain(truth, per_segment, kSigma, 3)),
-        two(withoutEdits(truth, points, selection())),
-        one(withoutEdits(buildChain({0, 0}, 0.2, kappa1, {{1.0, end_length + 120.0, 0.020}}), points, selection())) {
-    const double variance = two.ssr / static_cast<double>(static_cast<int>(points.size()) - two.unknowns);
-    f = (one.ssr - two.ssr) / (two.unknowns - one.unknowns) / variance;
-  }
-  // The two-segment fit keeps the minimum, a strong one (no merge inside a chain takes
-  // it), and one segment keeps the tolerance.
-  void checkPremises() const {
-    ASSERT_EQ(two.segments.size(), 2u);
-    ASSERT_EQ(curvatureReversals(two.segments), 1) << "the fit lost the minimum";
-    const double k0 = two.segments[0].kappaStart(), kj = two.segments[1].kappaStart(), k1 = two.segments[1].kappaEnd();
-    ASSERT_GE(std::min(std::abs(kj - k0), std::abs(kj - k1)) / kj, selection().weak_extremum) << "a weak extremum";
-    ASSERT_LE(maxDistance(one.segments, points), kTolerance) << "one segment misses the tolerance";
-  }
-};
-
-// A stroke's end that curls (0.018 -> 0.010 over 8 units, the neighbour rising to 0.020):
-// the points do not object to one segment (the F-test), so the two are merged for the
-// reversal fewer: one segment, within the tolerance, its curvature reversing nowhere.
-TEST(SelectChain, MergesACurledEndThePointsLetGo) {
-  const CurledEnd c(0.018, 0.010, 8.0, 40);
-  ASSERT_NO_FATAL_FAILURE(c.checkPremises());
-  ASSERT_LT(c.f, selection().significance) << "the points object to the merge";
-  const SelectionResult r = selectChain(c.truth, c.points, {}, selection());
-  EXPECT_GE(r.merges, 1);
-  EXPECT_EQ(r.fit.segments.size(), 1u);
-  EXPECT_EQ(curvatureReversals(r.fit.segments), 0);
-  EXPECT_LE(maxDistance(r.fit.segments, c.points), kTolerance);
-}
-
-// A minimum the points show (0.018 -> 0.010 over 14 units, 1,000 points a segment): one
-// segment keeps the tolerance, but the F-test objects, and the two segments stay (a
-// known chain's extremum, as the pipeline's ground-truth chains have at their ends: on
-// the tolerance alone, the merge took one of them).
-TEST(SelectChain, KeepsAnEndExtremumThePointsShow) {
-  const CurledEnd c(0.018, 0.010, 14.0, 1000);
-  ASSERT_NO_FATAL_FAILURE(c.checkPremises());
-  ASSERT_GT(c.f, selection().significance) << "the points do not object to the merge";
-  const SelectionResult r = selectChain(c.truth, c.points, {}, selection());
-  EXPECT_EQ(r.fit.segments.size(), 2u);
-  EXPECT_EQ(curvatureReversals(r.fit.segments), 1);
-}
-
 // Two sides meeting at a corner, each curling gently into it (clothoids from zero
 // curvature at the chain's ends to 6.7e-4 at the corner: half a tolerance off their
 // lines at the corner; noise-free points). Fitted as they are, they keep their curls,
