@@ -42,7 +42,7 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
 
 /// Stage 7's selection options: the tolerance less a margin, the alpha range and the
 /// bound on curvature, the points and iterations per fit, the noise, the cap and the
-/// budget; closure, fixed ends and corners are the caller's.
+/// budget; closure, fixed ends and corners are the caller's (a part's: the overload below).
 SelectionOptions stage7Selection(const FitContext& context);
 /// The same for one part's chain: closed as the part is, its ends held at its corners.
 SelectionOptions stage7Selection(const FitContext& context, const Part& part);
