@@ -245,6 +245,40 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   return worst;
 }
 
+bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit) {
+  if (!(limit > 0.0)) return false;
+  if (points.size() < 2 || curve.pieces.empty()) return true;
+  if (curve.closed) points.push_back(points.front());
+  const EdgeGrid grid(points);
+  // (both samplings place their samples within kSamplePrecision of kStrayStep: their
+  // distances are off by at most that much each)
+  const double slack = 5.0 * 2.0 * kSamplePrecision * kStrayStep * diagonal;
+  int total = 0;
+  for (const CurvePiece& piece : curve.pieces) total += ceilWithin(piece.segment.length() / limit, 1, 99999) + 1;
+  const int neighbours = kNeighbourEdges + 2 * (static_cast<int>(points.size()) - 1) / total;
+  CurveSamples smp;
+  int edge = 0;
+  for (const CurvePiece& piece : curve.pieces) {
+    const LaSegment& seg = piece.segment;
+    const int n = ceilWithin(seg.length() / limit, 1, 99999) + 1;
+    const double h = seg.length() / (n - 1);
+    smp.clear();
+    seg.sample(n, smp, 0.0, sampleTolerance(seg, kStrayStep * diagonal));
+    double before = 0.0;
+    for (std::size_t i = 0; i < smp.size(); ++i) {
+      if (grid.outsideBox(smp.point[i]) > limit) return false;
+      const double d = grid.distanceAlong(smp.point[i], neighbours, edge);
+      // (a point of the curve between two samples h apart along it lies within a / 2 + b / 2
+      // of one of them, a + b = h: no further from the polyline than the mean of theirs
+      // and h / 2)
+      const double bound = i == 0 ? d : 0.5 * (before + d + h);
+      if (bound + slack > limit) return false;
+      before = d;
+    }
+  }
+  return true;
+}
+
 namespace {
 
 // A curvature change smaller than this (times 1 / diagonal) is no change: lacheck.py's

@@ -50,6 +50,12 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
 /// lower bound: such a curve has run away, and how far matters no more).
 double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal);
 
+/// True where strayFromPoints(curve, points, diagonal) is surely at most `limit`, told
+/// from samples `limit` apart (a tenth of its samples and fewer, where the limit is a
+/// tolerance or more); false where they cannot tell. (Where a stray matters only beyond
+/// a limit, and most curves stay well inside it.)
+bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit);
+
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
 
 /// The reversals of the curvature along the curve, a jump at a corner against the trend

@@ -449,7 +449,9 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
   if (part.closed) stroke_length += (part.points.front() - part.points.back()).norm();
   const bool longer = curve_length > kStrayLength * stroke_length;
   if (!longer && tip_allowance == INFINITY) return 0.0;
-  const double stray = strayFromPoints(curveOf(segments, part.closed), part.points, diag);
+  const Curve curve = curveOf(segments, part.closed);
+  if (!longer && strayWithin(curve, part.points, diag, tip_allowance)) return 0.0;
+  const double stray = strayFromPoints(curve, part.points, diag);
   return longer || stray > tip_allowance ? stray : 0.0;
 }
 

@@ -174,6 +174,33 @@ TEST(StrayFromPoints, HalfCircleOverItsDiameterAndOverItsOwnPoints) {
   EXPECT_GE(stray, 0.9 * sagitta);  // a sample near the middle of some chord
 }
 
+// strayWithin tells a limit the stray keeps from coarse samples, and never one it
+// breaks: the half circle strays by 5 from its diameter (above), by the sagitta from
+// its own points; a quarter circle's top is as far from the diameter's polyline as from
+// its own end.
+TEST(StrayWithin, NeverSaysWithinWhereTheStrayIsBeyond) {
+  constexpr double kPi = std::numbers::pi;
+  Curve half;
+  half.pieces.push_back({LaSegment::arc(5.0 * kPi, Vec2(0, 0), kPi / 2, -0.2), false});
+  std::vector<Vec2> diameter;
+  for (int i = 0; i <= 20; ++i) diameter.emplace_back(0.5 * i, 0.0);
+  for (double limit : {0.5, 2.0, 4.9, 5.0}) EXPECT_FALSE(strayWithin(half, diameter, 10.0, limit)) << limit;
+  EXPECT_TRUE(strayWithin(half, diameter, 10.0, 10.0));  // its samples 10 apart: the ends and (5, 5)
+  std::vector<Vec2> on;
+  for (int i = 0; i <= 16; ++i) {
+    const double a = kPi * (1.0 - i / 16.0);
+    on.emplace_back(5.0 + 5.0 * std::cos(a), 5.0 * std::sin(a));
+  }
+  EXPECT_TRUE(strayWithin(half, on, 10.0, 0.5));    // the sagitta is 0.024
+  EXPECT_FALSE(strayWithin(half, on, 10.0, 0.02));  // below it
+  EXPECT_FALSE(strayWithin(half, on, 10.0, 0.0));
+  EXPECT_FALSE(strayWithin(half, on, 10.0, NAN));
+  // Wherever it says within, the dense measure agrees (limits from 0.01 to 6 over both).
+  for (const auto* points : {&diameter, &on})
+    for (double limit = 0.01; limit < 6.0; limit *= 1.1)
+      if (strayWithin(half, *points, 10.0, limit)) EXPECT_LE(strayFromPoints(half, *points, 10.0), limit) << limit;
+}
+
 
 // --- Curvature extrema and the tightest radius.
 
