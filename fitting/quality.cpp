@@ -317,7 +317,10 @@ class ReversalCounter {
   // points. The curvature of an LA segment is monotone and so is the step between samples
   // (|d kappa/ds| is a power of a linear function), so when both end steps exceed eps every
   // sample changes, and the two ends alone give the same directions and leave the same
-  // anchor. Only a nearly flat segment is walked sample by sample.
+  // anchor. Only a nearly flat segment is walked sample by sample, and there only the
+  // samples that change matter: after one within eps of the anchor, the next that changes
+  // is the first beyond anchor + eps in the direction the curvature runs, found by steps
+  // doubling from it and bisection.
   void addSegment(const LaSegment& seg) {
     const double step = seg.length() / kCheckerSteps;
     const double k0 = seg.kappaStart(), k1 = seg.kappaEnd();
@@ -327,7 +330,26 @@ class ReversalCounter {
       add(k1);
       return;
     }
-    for (int i = 0; i < kCheckerSteps; ++i) add(seg.kappa(i * step));
+    auto sample = [&](int i) { return seg.kappa(i * step); };
+    const double direction = k1 > k0 ? 1.0 : -1.0;
+    auto changes = [&](int i) { return direction * (sample(i) - anchor_) > eps_; };
+    for (int i = 0; i < kCheckerSteps;) {
+      const double kappa = sample(i);
+      if (!started_ || std::abs(kappa - anchor_) > eps_ || k1 == k0) {
+        add(kappa);
+        ++i;
+        continue;
+      }
+      int unchanged = i, ahead = 1;  // (the first sample that changes lies after `unchanged`)
+      while (unchanged + ahead < kCheckerSteps && !changes(unchanged + ahead)) unchanged += ahead, ahead *= 2;
+      int changed = std::min(unchanged + ahead, kCheckerSteps);  // (kCheckerSteps: none does)
+      while (changed - unchanged > 1) {
+        const int middle = unchanged + (changed - unchanged) / 2;
+        (changes(middle) ? changed : unchanged) = middle;
+      }
+      if (changed < kCheckerSteps) add(sample(changed));
+      i = changed + 1;
+    }
     add(k1);
   }
 

@@ -303,6 +303,52 @@ TEST(CurvatureExtrema, ACircleOfArcsHasNoneAndItsRadius) {
   EXPECT_DOUBLE_EQ(q.min_radius, kRadius);
 }
 
+// lacheck.py's extrema_dense as it reads: every segment rebuilt at 2,001 samples, one walk
+// over all of them with an anchor, a change beyond 1e-6 / diagonal its direction.
+int lacheckReversals(const Curve& c, double diagonal) {
+  std::vector<double> kappa;
+  for (const CurvePiece& p : c.pieces)
+    for (int i = 0; i <= 2000; ++i) kappa.push_back(p.segment.kappa(p.segment.length() * i / 2000));
+  if (c.closed) kappa.push_back(kappa.front());
+  const double eps = 1e-6 / diagonal;
+  std::vector<int> signs;
+  double anchor = kappa.front();
+  for (double v : kappa)
+    if (std::abs(v - anchor) > eps) signs.push_back(v > anchor ? 1 : -1), anchor = v;
+  int count = 0;
+  for (std::size_t i = 1; i < signs.size(); ++i) count += signs[i] != signs[i - 1];
+  if (c.closed && signs.size() > 1 && signs.back() != signs.front()) ++count;
+  return count;
+}
+
+// Nearly flat segments (their curvature changes by a few or tens of the threshold, less
+// than it per sample near an end) are where the count walks the samples: it agrees with
+// lacheck's walk on chains of them, rising and falling, open and closed. (Changes of a
+// few thresholds make the count depend on the sample each walk last changed at.)
+TEST(CurvatureExtrema, NearlyFlatSegmentsCountAsLacheckWalksThem) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int total = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    Curve c;
+    c.closed = trial % 2 == 1;
+    Vec2 p(0, 0);
+    double theta = 0.0, kappa = 1.0;
+    const int segments = 2 + trial % 4;
+    for (int k = 0; k < segments; ++k) {
+      const double alpha = (unit(rng) < 0.5 ? -1.0 : 1.0) * (0.2 + 2.8 * unit(rng));
+      const double next = kappa + (trial < 20 ? 6e-5 : 6e-6) * (unit(rng) - 0.5);
+      const LaSegment s(alpha, 0.5 + unit(rng), p, theta, kappa, next);
+      c.pieces.push_back({s});
+      p = s.end(), theta = s.theta(s.length()), kappa = next;
+    }
+    const int expected = lacheckReversals(c, 1.0);
+    EXPECT_EQ(curvatureReversals(c, 1.0), expected) << "trial " << trial;
+    total += expected;
+  }
+  EXPECT_GT(total, 40);  // (the chains do reverse)
+}
+
 // An oval: rise 0.5 -> 2, fall 2 -> 0.5, twice, each segment turning pi/2 (a turning of
 // pi repeated closes the curve). Two maxima and two minima, one of them at the seam.
 Curve oval() {
