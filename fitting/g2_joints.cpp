@@ -70,6 +70,24 @@ class JointSystem {
     const bool a = solvePieceAt(before(joint));
     return solvePieceAt(joint % chain_.size()) && a;
   }
+  // The two pieces' solves at a joint, to put back once its unknown is back where it
+  // was: bit for bit where setting it back restores the chain exactly (an angle set, not
+  // a closed chain's joint 0 or a slide, which move other values by differences).
+  std::pair<SegmentSolve, SegmentSolve> takeAround(std::size_t joint) {
+    return {std::move(solves_[before(joint)]), std::move(solves_[joint % chain_.size()])};
+  }
+  bool restoresExactly(std::size_t joint) const { return !chain_.slides(joint) && !(chain_.closed && joint == 0); }
+  void putAround(std::size_t joint, std::pair<SegmentSolve, SegmentSolve>&& taken) {
+    solves_[before(joint)] = std::move(taken.first);
+    solves_[joint % chain_.size()] = std::move(taken.second);
+  }
+  // The unknown of a joint set back to `value` after a move, the pieces there as they
+  // were solved for it.
+  void setBack(std::size_t joint, double value, std::pair<SegmentSolve, SegmentSolve>&& taken) {
+    setUnknown(joint, value);
+    if (restoresExactly(joint)) putAround(joint, std::move(taken));
+    else solveAround(joint);
+  }
 
   double kappaLeft(std::size_t joint) const { return solves_[before(joint)].segment->kappaEnd(); }
   double kappaRight(std::size_t joint) const { return solves_[joint % chain_.size()].segment->kappaStart(); }
@@ -130,20 +148,28 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
     jac.resize(m, m);
     for (int k = 0; k < m; ++k) {
       const double saved = sys.unknown(eq[k]);
+      auto taken = sys.takeAround(eq[k]);
       sys.setUnknown(eq[k], saved + kAngleStep);
       const bool ok = sys.solveAround(eq[k]);
       if (ok) jac.col(k) = (sys.residual() - f) / kAngleStep;
-      sys.setUnknown(eq[k], saved);
-      sys.solveAround(eq[k]);
-      if (!ok) {  // step to the other side
+      if (!ok && sys.restoresExactly(eq[k])) {  // step to the other side
         sys.setUnknown(eq[k], saved - kAngleStep);
         if (!sys.solveAround(eq[k])) {
           infeasible = "joint " + std::to_string(eq[k]) + " is at the edge of feasibility";
           return false;
         }
         jac.col(k) = (f - sys.residual()) / kAngleStep;
-        sys.setUnknown(eq[k], saved);
-        sys.solveAround(eq[k]);
+      }
+      sys.setBack(eq[k], saved, std::move(taken));
+      if (!ok && !sys.restoresExactly(eq[k])) {  // (the same, from the pieces solved anew)
+        auto again = sys.takeAround(eq[k]);
+        sys.setUnknown(eq[k], saved - kAngleStep);
+        if (!sys.solveAround(eq[k])) {
+          infeasible = "joint " + std::to_string(eq[k]) + " is at the edge of feasibility";
+          return false;
+        }
+        jac.col(k) = (f - sys.residual()) / kAngleStep;
+        sys.setBack(eq[k], saved, std::move(again));
       }
     }
     return true;
