@@ -317,10 +317,12 @@ class ReversalCounter {
   // points. The curvature of an LA segment is monotone and so is the step between samples
   // (|d kappa/ds| is a power of a linear function), so when both end steps exceed eps every
   // sample changes, and the two ends alone give the same directions and leave the same
-  // anchor. Only a nearly flat segment is walked sample by sample, and there only the
-  // samples that change matter: after one within eps of the anchor, the next that changes
-  // is the first beyond anchor + eps in the direction the curvature runs, found by steps
-  // doubling from it and bisection.
+  // anchor. Only a nearly flat segment is walked, and there only the samples that change
+  // the direction or the anchor's value across a run matter: after a sample within eps of
+  // the anchor, the next that changes is the first beyond it in the direction the
+  // curvature runs; after one that changed, those whose step from the one before exceeds
+  // eps all change the same way, the last of them leaving the anchor. Each is found by
+  // steps doubling and bisection (the steps are monotone too).
   void addSegment(const LaSegment& seg) {
     const double step = seg.length() / kCheckerSteps;
     const double k0 = seg.kappaStart(), k1 = seg.kappaEnd();
@@ -331,24 +333,36 @@ class ReversalCounter {
       return;
     }
     auto sample = [&](int i) { return seg.kappa(i * step); };
+    if (k1 == k0) {  // (no direction to search along)
+      for (int i = 0; i < kCheckerSteps; ++i) add(sample(i));
+      add(k1);
+      return;
+    }
     const double direction = k1 > k0 ? 1.0 : -1.0;
+    // The first sample from `from` on where `holds` (which, once true, stays true), or
+    // kCheckerSteps.
+    auto first = [&](int from, auto&& holds) {
+      int no = from - 1, ahead = 1;
+      while (no + ahead < kCheckerSteps && !holds(no + ahead)) no += ahead, ahead *= 2;
+      int yes = std::min(no + ahead, kCheckerSteps);
+      while (yes - no > 1) {
+        const int middle = no + (yes - no) / 2;
+        (holds(middle) ? yes : no) = middle;
+      }
+      return yes;
+    };
     auto changes = [&](int i) { return direction * (sample(i) - anchor_) > eps_; };
+    auto flat = [&](int i) { return std::abs(sample(i) - sample(i - 1)) <= eps_; };
     for (int i = 0; i < kCheckerSteps;) {
       const double kappa = sample(i);
-      if (!started_ || std::abs(kappa - anchor_) > eps_ || k1 == k0) {
-        add(kappa);
-        ++i;
+      if (started_ && std::abs(kappa - anchor_) <= eps_) {
+        i = first(i + 1, changes);
         continue;
       }
-      int unchanged = i, ahead = 1;  // (the first sample that changes lies after `unchanged`)
-      while (unchanged + ahead < kCheckerSteps && !changes(unchanged + ahead)) unchanged += ahead, ahead *= 2;
-      int changed = std::min(unchanged + ahead, kCheckerSteps);  // (kCheckerSteps: none does)
-      while (changed - unchanged > 1) {
-        const int middle = unchanged + (changed - unchanged) / 2;
-        (changes(middle) ? changed : unchanged) = middle;
-      }
-      if (changed < kCheckerSteps) add(sample(changed));
-      i = changed + 1;
+      add(kappa);
+      const int run_end = first(i + 1, flat) - 1;  // (i: no run)
+      if (run_end > i) add(sample(run_end));
+      i = run_end + 1;
     }
     add(k1);
   }

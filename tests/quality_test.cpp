@@ -347,6 +347,40 @@ TEST(CurvatureExtrema, NearlyFlatSegmentsCountAsLacheckWalksThem) {
     total += expected;
   }
   EXPECT_GT(total, 40);  // (the chains do reverse)
+
+  // Segments whose steps between samples pass the threshold part of the way: with a
+  // logarithmic spiral's curvature (alpha 1) running 1 -> 1.6 -> 1.1 -> 1.5, the step
+  // changes 2.6 times along each; the threshold (the diagonal) is set between the
+  // smallest and the largest.
+  Curve spirals;
+  Vec2 p(0, 0);
+  double theta = 0.0, kappa = 1.0;
+  for (double next : {1.6, 1.1, 1.5}) {
+    const LaSegment s(1.0, 1.0, p, theta, kappa, next);
+    spirals.pieces.push_back({s});
+    p = s.end(), theta = s.theta(s.length()), kappa = next;
+  }
+  for (double diagonal : {1.0 / 300, 1.0 / 400, 1.0 / 500, 1.0 / 700}) {  // (eps 1e-6 / diagonal: 3e-4 to 7e-4)
+    const int expected = lacheckReversals(spirals, diagonal);
+    EXPECT_EQ(curvatureReversals(spirals, diagonal), expected) << diagonal;
+    EXPECT_GE(expected, 2) << diagonal;
+  }
+
+  // Chains that mix such segments with nearly flat ones reversing by a few thresholds
+  // (where the count depends on the sample each run left the anchor at).
+  for (int trial = 0; trial < 300; ++trial) {
+    Curve c;
+    p = Vec2(0, 0), theta = 0.0, kappa = 1.0;
+    for (int k = 0; k < 5; ++k) {
+      const double alpha = unit(rng) < 0.5 ? 1.0 : -0.5 - unit(rng);
+      const double change = k % 2 == 0 ? 0.6 * (unit(rng) - 0.5) : 4e-3 * (unit(rng) - 0.5);
+      const LaSegment s(alpha, 1.0, p, theta, kappa, kappa + change);
+      c.pieces.push_back({s});
+      p = s.end(), theta = s.theta(s.length()), kappa += change;
+    }
+    const double diagonal = 1.0 / (1000.0 + 2000.0 * unit(rng));  // (eps 1e-3 to 3e-3)
+    EXPECT_EQ(curvatureReversals(c, diagonal), lacheckReversals(c, diagonal)) << "trial " << trial;
+  }
 }
 
 // An oval: rise 0.5 -> 2, fall 2 -> 0.5, twice, each segment turning pi/2 (a turning of
