@@ -97,6 +97,11 @@ struct FitOptions {
   /// the app's live preview, which must keep up with the pen). Ignored with g2 = kOff
   /// (stage 7's chains are G2 by construction).
   bool polish = true;
+  /// Stage 7's segments get the standard error of their alpha (PieceReport::
+  /// alpha_standard_error: how well the points determine it), at a Jacobian and a
+  /// decomposition more per chain fit a selection keeps: 3.5% of the shared data's fit
+  /// time, for a figure neither lafit nor the app shows. Off: infinite.
+  bool alpha_standard_errors = false;
   /// Wall time the fit may take (ms; 0: no limit). When it runs out, stage 7 stops
   /// editing and trying other starts, and the fit keeps the best G2 chain found so far,
   /// with its true figures (FitResult::out_of_time says so). Stages 1-6 and the cap on
@@ -123,7 +128,8 @@ struct PieceReport {
   double alpha = 0.0;         // alpha used (moved into the feasible range if needed)
   bool alpha_moved = false;
   /// Standard error of the fitted alpha (stage 7, fitting/chain_fit.h): how well the
-  /// points determine it; infinite when stage 7 did not run.
+  /// points determine it; infinite when stage 7 did not run or was not asked for it
+  /// (FitOptions::alpha_standard_errors).
   double alpha_standard_error = INFINITY;
   int part = 0;               // which corner-to-corner part it belongs to
   int spline = -1;            // index into FitResult::splines of that part's spline (-1: a straight part)

@@ -114,6 +114,7 @@ SelectionOptions stage7Selection(const FitContext& context) {
   co.max_alpha = options.max_alpha;
   co.max_points = kFitPoints;
   co.max_iterations = kFitIterations;
+  co.standard_errors = options.alpha_standard_errors;
   co.noise = context.noise.sigma;
   const double negligible_move = kNegligibleMove * context.tolerance;
   co.least_decrease = negligible_move * negligible_move;

@@ -631,7 +631,9 @@ class PipelineAlphaTest : public ::testing::TestWithParam<CaseParam> {};
 TEST_P(PipelineAlphaTest, AlphaMatchesTheTruthAsFarAsThePointsDetermineIt) {
   const auto [index, transform] = GetParam();
   const Truth& truth = truthCase(index);
-  const FitResult r = fit(truth.noisy);
+  FitOptions options;
+  options.alpha_standard_errors = true;
+  const FitResult r = fit(truth.noisy, options);
   ASSERT_EQ(r.curve.pieces.size(), truth.curve.pieces.size()) << describeFit(r);
   std::string alphas;
   auto ssr = [&](const Curve& c) {
