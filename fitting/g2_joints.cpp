@@ -70,23 +70,21 @@ class JointSystem {
     const bool a = solvePieceAt(before(joint));
     return solvePieceAt(joint % chain_.size()) && a;
   }
-  // The two pieces' solves at a joint, to put back once its unknown is back where it
-  // was: bit for bit where setting it back restores the chain exactly (an angle set, not
-  // a closed chain's joint 0 or a slide, which move other values by differences).
+  // The two pieces' solves at a joint, taken before its unknown moves, for setBack.
   std::pair<SegmentSolve, SegmentSolve> takeAround(std::size_t joint) {
     return {std::move(solves_[before(joint)]), std::move(solves_[joint % chain_.size()])};
   }
-  bool restoresExactly(std::size_t joint) const { return !chain_.slides(joint) && !(chain_.closed && joint == 0); }
-  void putAround(std::size_t joint, std::pair<SegmentSolve, SegmentSolve>&& taken) {
-    solves_[before(joint)] = std::move(taken.first);
-    solves_[joint % chain_.size()] = std::move(taken.second);
-  }
-  // The unknown of a joint set back to `value` after a move, the pieces there as they
-  // were solved for it.
+  // The joint's unknown back at `value`, with the two pieces' solves taken there: put
+  // back where setting an angle restores the chain bit for bit, else solved again (a
+  // closed chain's joint 0 and a slide move other values by differences).
   void setBack(std::size_t joint, double value, std::pair<SegmentSolve, SegmentSolve>&& taken) {
     setUnknown(joint, value);
-    if (restoresExactly(joint)) putAround(joint, std::move(taken));
-    else solveAround(joint);
+    if (chain_.slides(joint) || (chain_.closed && joint == 0)) {
+      solveAround(joint);
+      return;
+    }
+    solves_[before(joint)] = std::move(taken.first);
+    solves_[joint % chain_.size()] = std::move(taken.second);
   }
 
   double kappaLeft(std::size_t joint) const { return solves_[before(joint)].segment->kappaEnd(); }
@@ -152,16 +150,8 @@ SolveReport newton(JointSystem& sys, const G2Options& options) {
       sys.setUnknown(eq[k], saved + kAngleStep);
       const bool ok = sys.solveAround(eq[k]);
       if (ok) jac.col(k) = (sys.residual() - f) / kAngleStep;
-      if (!ok && sys.restoresExactly(eq[k])) {  // step to the other side
-        sys.setUnknown(eq[k], saved - kAngleStep);
-        if (!sys.solveAround(eq[k])) {
-          infeasible = "joint " + std::to_string(eq[k]) + " is at the edge of feasibility";
-          return false;
-        }
-        jac.col(k) = (f - sys.residual()) / kAngleStep;
-      }
       sys.setBack(eq[k], saved, std::move(taken));
-      if (!ok && !sys.restoresExactly(eq[k])) {  // (the same, from the pieces solved anew)
+      if (!ok) {  // step to the other side
         auto again = sys.takeAround(eq[k]);
         sys.setUnknown(eq[k], saved - kAngleStep);
         if (!sys.solveAround(eq[k])) {

@@ -51,9 +51,9 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
 double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal);
 
 /// True where strayFromPoints(curve, points, diagonal) is surely at most `limit`, told
-/// from samples `limit` apart (a tenth of its samples and fewer, where the limit is a
-/// tolerance or more); false where they cannot tell. (Where a stray matters only beyond
-/// a limit, and most curves stay well inside it.)
+/// from samples `limit` apart (the dense measure's are 0.2% of the diagonal apart);
+/// false where they cannot tell. (Where a stray matters only beyond a limit, and most
+/// curves stay well inside it.)
 bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit);
 
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
