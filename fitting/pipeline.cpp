@@ -573,8 +573,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // sample step, from the stroke's polyline: a loop, or a corner run past its tip)
   auto misses = [](const FitResult& f) {
     const double allowed = kStrayWarning * f.tolerance + medianStep(f.cleaned.points);
-    return f.quality.max_dev > f.tolerance || (!strayWithin(f.curve, f.cleaned.points, f.quality.diagonal, allowed) &&
-                                                strayFromPoints(f.curve, f.cleaned.points, f.quality.diagonal) > allowed);
+    return f.quality.max_dev > f.tolerance || strayBeyond(f.curve, f.cleaned.points, f.quality.diagonal, allowed) > 0.0;
   };
   // (a curve bending tighter than the tolerance that another fit may mend)
   auto mendable = [&](const FitResult& f) {

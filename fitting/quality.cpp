@@ -219,10 +219,11 @@ std::vector<double> distancesToCurve(const Curve& curve, const std::vector<Vec2>
 // max_dev, measured from the points, cannot see it)
 constexpr double kStrayStep = 2e-3;
 
-double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal) {
-  if (points.size() < 2 || curve.pieces.empty()) return 0.0;
-  if (curve.closed) points.push_back(points.front());
-  const EdgeGrid grid(points);
+namespace {
+
+// The dense measure (strayFromPoints) against the grid of the stroke's polyline of
+// `edges` edges.
+double denseStray(const Curve& curve, const EdgeGrid& grid, int edges, double diagonal) {
   std::vector<Vec2> samples;
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
@@ -232,7 +233,7 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
     samples.insert(samples.end(), smp.point.begin(), smp.point.end());
   }
   // (the first bound from as many edges either side as the points have per sample step)
-  const int neighbours = kNeighbourEdges + 2 * (static_cast<int>(points.size()) - 1) / static_cast<int>(samples.size());
+  const int neighbours = kNeighbourEdges + 2 * edges / static_cast<int>(samples.size());
   double worst = 0.0;
   int edge = 0;
   for (const Vec2& q : samples) {
@@ -245,17 +246,14 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   return worst;
 }
 
-bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit) {
-  if (!(limit > 0.0)) return false;
-  if (points.size() < 2 || curve.pieces.empty()) return true;
-  if (curve.closed) points.push_back(points.front());
-  const EdgeGrid grid(points);
+// strayWithin against the same grid (limit > 0).
+bool coarselyWithin(const Curve& curve, const EdgeGrid& grid, int edges, double diagonal, double limit) {
   // (both samplings place their samples within kSamplePrecision of kStrayStep: their
   // distances are off by at most that much each)
   const double slack = 5.0 * 2.0 * kSamplePrecision * kStrayStep * diagonal;
   int total = 0;
   for (const CurvePiece& piece : curve.pieces) total += ceilWithin(piece.segment.length() / limit, 1, 99999) + 1;
-  const int neighbours = kNeighbourEdges + 2 * (static_cast<int>(points.size()) - 1) / total;
+  const int neighbours = kNeighbourEdges + 2 * edges / total;
   CurveSamples smp;
   int edge = 0;
   for (const CurvePiece& piece : curve.pieces) {
@@ -277,6 +275,33 @@ bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, 
     }
   }
   return true;
+}
+
+}  // namespace
+
+double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diagonal) {
+  if (points.size() < 2 || curve.pieces.empty()) return 0.0;
+  if (curve.closed) points.push_back(points.front());
+  const EdgeGrid grid(points);
+  return denseStray(curve, grid, static_cast<int>(points.size()) - 1, diagonal);
+}
+
+bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit) {
+  if (!(limit > 0.0)) return false;
+  if (points.size() < 2 || curve.pieces.empty()) return true;
+  if (curve.closed) points.push_back(points.front());
+  const EdgeGrid grid(points);
+  return coarselyWithin(curve, grid, static_cast<int>(points.size()) - 1, diagonal, limit);
+}
+
+double strayBeyond(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit) {
+  if (points.size() < 2 || curve.pieces.empty()) return 0.0;
+  if (curve.closed) points.push_back(points.front());
+  const EdgeGrid grid(points);  // (one grid for both passes)
+  const int edges = static_cast<int>(points.size()) - 1;
+  if (limit > 0.0 && coarselyWithin(curve, grid, edges, diagonal, limit)) return 0.0;
+  const double stray = denseStray(curve, grid, edges, diagonal);
+  return stray > limit ? stray : 0.0;
 }
 
 namespace {
@@ -333,12 +358,7 @@ class ReversalCounter {
       return;
     }
     auto sample = [&](int i) { return seg.kappa(i * step); };
-    if (k1 == k0) {  // (no direction to search along)
-      for (int i = 0; i < kCheckerSteps; ++i) add(sample(i));
-      add(k1);
-      return;
-    }
-    const double direction = k1 > k0 ? 1.0 : -1.0;
+    const double direction = k1 > k0 ? 1.0 : -1.0;  // (equal ends: a circular segment, above)
     // The first sample from `from` on where `holds` (which, once true, stays true), or
     // kCheckerSteps.
     auto first = [&](int from, auto&& holds) {

@@ -56,6 +56,10 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
 /// curves stay well inside it.)
 bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit);
 
+/// strayFromPoints where it exceeds `limit`, else 0: strayWithin's samples first, the
+/// dense measure only where they cannot tell (on one grid of the points).
+double strayBeyond(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit);
+
 QualityFigures measureQuality(const Curve& curve, const std::vector<Vec2>& points);
 
 /// The reversals of the curvature along the curve, a jump at a corner against the trend

@@ -449,11 +449,8 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
   for (std::size_t i = 1; i < part.points.size(); ++i) stroke_length += (part.points[i] - part.points[i - 1]).norm();
   if (part.closed) stroke_length += (part.points.front() - part.points.back()).norm();
   const bool longer = curve_length > kStrayLength * stroke_length;
-  if (!longer && tip_allowance == INFINITY) return 0.0;
-  const Curve curve = curveOf(segments, part.closed);
-  if (!longer && strayWithin(curve, part.points, diag, tip_allowance)) return 0.0;
-  const double stray = strayFromPoints(curve, part.points, diag);
-  return longer || stray > tip_allowance ? stray : 0.0;
+  if (longer) return strayFromPoints(curveOf(segments, part.closed), part.points, diag);
+  return tip_allowance == INFINITY ? 0.0 : strayBeyond(curveOf(segments, part.closed), part.points, diag, tip_allowance);
 }
 
 // Makes the parts' chains meet at their corners. Stage 7 pins a part's ends to its

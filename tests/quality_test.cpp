@@ -201,6 +201,26 @@ TEST(StrayWithin, NeverSaysWithinWhereTheStrayIsBeyond) {
       if (strayWithin(half, *points, 10.0, limit)) EXPECT_LE(strayFromPoints(half, *points, 10.0), limit) << limit;
 }
 
+// strayBeyond is the dense measure where that exceeds the limit, else 0, whichever
+// pass decides: the half circle's stray of 5 from its diameter, and of the sagitta from
+// its own points.
+TEST(StrayBeyond, TheDenseStrayWhereItExceedsTheLimitElseZero) {
+  constexpr double kPi = std::numbers::pi;
+  Curve half;
+  half.pieces.push_back({LaSegment::arc(5.0 * kPi, Vec2(0, 0), kPi / 2, -0.2), false});
+  std::vector<Vec2> diameter, on;
+  for (int i = 0; i <= 20; ++i) diameter.emplace_back(0.5 * i, 0.0);
+  for (int i = 0; i <= 16; ++i) {
+    const double a = kPi * (1.0 - i / 16.0);
+    on.emplace_back(5.0 + 5.0 * std::cos(a), 5.0 * std::sin(a));
+  }
+  for (const auto* points : {&diameter, &on}) {
+    const double dense = strayFromPoints(half, *points, 10.0);
+    for (double limit = 0.01; limit < 12.0; limit *= 1.3)
+      EXPECT_EQ(strayBeyond(half, *points, 10.0, limit), dense > limit ? dense : 0.0) << limit;
+  }
+}
+
 
 // --- Curvature extrema and the tightest radius.
 
