@@ -24,9 +24,6 @@ struct Piece {
   bool line() const { return !std::isnan(line_length); }
 };
 
-// The model selection's simplifying edits.
-enum class EditKind { kCollapse, kMerge, kStraighten, kStraightenSide };
-
 // Alpha for a segment that gets a zero-curvature end (DESIGN.md section 2: alpha < 0).
 constexpr double kZeroEndAlpha = -1.0;
 // An edited piece's new free end or joint starts at this fraction of its neighbour's
@@ -458,13 +455,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // vain, and the full one, where nothing came between, starts on the same chain with the
   // same candidates: the same fits, the same verdicts (14% of the trial fits' steps on
   // the shared data). A trial is not run again on its chain (it still counts as an edit:
-  // the cap on edits cuts where it did).
-  struct Tried {
-    EditKind kind;
-    std::size_t index, count;
-    bool operator==(const Tried&) const = default;
-  };
-  std::vector<Tried> not_kept;
+  // the cap on edits cuts where it did). Nor after Lawson's rounds (reweigh), which move
+  // the chain a little and keep its segments: on the shared data no curve changed for not
+  // trying them again (a drawn star's fit across corners had tried three hooks three
+  // times each, in vain). The
+  // caller may hand in the verdicts of another selection of the same chain
+  // (SelectionOptions::not_kept).
+  std::vector<TrialEdit>& not_kept = out.not_kept;
+  not_kept = options.not_kept;
   auto take = [&](Attempt&& a) {
     out.fit = std::move(a.fit);
     out.corners = std::move(a.corners);
@@ -632,7 +630,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       for (const Candidate& c : candidates) {
         if (edits >= options.max_edits || spent()) break;
         ++edits;
-        const Tried tried{c.kind, c.index, c.count};
+        const TrialEdit tried{c.kind, c.index, c.count};
         if (std::find(not_kept.begin(), not_kept.end(), tried) != not_kept.end()) continue;
         not_kept.push_back(tried);  // (until it is kept, below)
         const std::optional<Edit> e = c.kind == EditKind::kCollapse ? collapse(segs, out.fit.feet, out.corners, c.index, closed, c.count)
@@ -692,7 +690,6 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       if (!r.improved || !(r.max_distance < out.fit.max_distance) || !withinCap(r, out.corners)) break;
       const double gain = out.fit.max_distance - r.max_distance;
       out.fit = r;
-      not_kept.clear();
       const int rounds_left = options.reweighing_rounds - round - 1;
       if (round >= 2 && out.fit.max_distance - options.tolerance > rounds_left * gain) break;
     }

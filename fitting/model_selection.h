@@ -63,6 +63,15 @@
 
 namespace la {
 
+/// A simplifying edit of a chain (selectChain): which, at which segment or joint, over how
+/// many segments.
+enum class EditKind { kCollapse, kMerge, kStraighten, kStraightenSide };
+struct TrialEdit {
+  EditKind kind;
+  std::size_t index, count;
+  bool operator==(const TrialEdit&) const = default;
+};
+
 struct SelectionOptions {
   double tolerance = 0.0;     // max distance from any point to the chain (world units, > 0)
   double significance = 4.0;  // F threshold (about the 1% level for a few unknowns and many points)
@@ -100,6 +109,8 @@ struct SelectionOptions {
   /// No edit starts once it is spent (the cap's merges excepted): the chain as it is then
   /// is the result.
   Budget budget;
+  /// Trial edits of the chain handed in that another selection of it did not keep.
+  std::vector<TrialEdit> not_kept;
   ChainFitOptions fit;
 };
 
@@ -110,6 +121,7 @@ struct SelectionResult {
   int cap_merges = 0;     // merges the cap on extrema forced
   bool over_cap = false;  // some part still has more extrema than the cap
   bool out_of_time = false;  // the budget stopped the edits
+  std::vector<TrialEdit> not_kept;  // trial edits of the chain chosen that were not kept
 };
 
 /// The circle closest to the points (least squares on x^2 + y^2 + D x + E y + F = 0), as

@@ -593,7 +593,11 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     co.hold_corner_points = true;
     SelectionResult held_fit;
     if (free.fit.improved) {
+      // (the free fit's trial edits it did not keep are not tried again: holding the
+      // corners' points only constrains the fit further; on the shared data two strokes
+      // came out with two extrema fewer, no other curve changed)
       co.corners = free.corners;
+      so.not_kept = free.not_kept;
       held_fit = selectChain(free.fit.segments, points, free.fit.feet, so);
     } else {
       held_fit = selectChain(chain, points, {}, so);
