@@ -429,6 +429,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (a start the chain fit refuses has no feet to edit by: nothing to select from; an edit
   // of it crashed the window screen on a noisy logarithmic spiral of four turns)
   if (out.fit.report.status == SolveStatus::kBadInput) return out;
+  if (out.fit.max_distance > options.hopeless_start) return out;
   const bool closed = options.fit.closed;
   const double n_points = static_cast<double>(points.size());
   struct Attempt {

@@ -109,6 +109,9 @@ struct SelectionOptions {
   /// No edit starts once it is spent (the cap's merges excepted): the chain as it is then
   /// is the result.
   Budget budget;
+  /// A first fit (its patience included) further than this from the points is the result,
+  /// unedited: the caller has other starts to try.
+  double hopeless_start = INFINITY;
   /// Trial edits of the chain handed in that another selection of it did not keep.
   std::vector<TrialEdit> not_kept;
   ChainFitOptions fit;
