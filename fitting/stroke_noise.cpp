@@ -12,8 +12,12 @@ namespace {
 
 // Points on a grid (pixels) are off the true stroke by up to sqrt(2)/2 of a step; no
 // curve can be closer to all of them than about this, so the tolerance is not set below
-// this many steps.
-constexpr double kQuantizationFloor = 0.75;
+// this many steps. (At 0.75 the fair curve had a twentieth of a step to spare over the
+// true one: a 74-point Omniglot stroke followed its stairs with 26 segments and 11
+// extrema, at one step 12 and 5, its largest deviation 0.68 -> 0.78 of a step; over the
+// shared data's pixel strokes, variants included, 2,573 -> 2,270 segments and 1,170 ->
+// 1,060 extrema, their time p99 39 -> 25 ms.)
+constexpr double kQuantizationFloor = 1.0;
 // A pointer that moves at most this many grid steps per sample stays on a pixel row or
 // column for several samples (stairs), so its noise repeats over neighbouring samples;
 // see noiseOf.

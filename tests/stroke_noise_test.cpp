@@ -73,7 +73,7 @@ TEST(StrokeNoise, PointsOnAPixelGridHaveTheQuantization) {
   for (Vec2& q : p) q = Vec2(std::round(q.x()), std::round(q.y()));
   const Noise n = noiseOf(p);
   EXPECT_TRUE(n.on_grid);
-  EXPECT_GE(n.floor, 0.75);
+  EXPECT_GE(n.floor, 1.0);  // (one step: kQuantizationFloor)
   EXPECT_GE(n.sigma, std::sqrt(1.0 / 12.0));
 }
 
