@@ -53,6 +53,9 @@ constexpr double kHookReachTolerances = 4.0;
 /// The tolerance a hook's worth is tied to when the caller gives none: FitOptions'
 /// default, 0.5% of the diagonal.
 constexpr double kDefaultToleranceFraction = 0.005;
+/// Distances (relative to the diagonal) and turns (radians) closer than this are equal
+/// where the seam is chosen (findSeam).
+constexpr double kTie = 1e-9;
 /// The overlap of a closed stroke is searched in this last fraction of its length only:
 /// longer overlaps are not overshoots but strokes that pass their start and go on (a
 /// "9" drawn from the crossing), and the first points are always near the start.
@@ -503,12 +506,17 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
   const double reach = options.close_fraction * boundingBoxDiagonal(p);
   const double tail_start = (1.0 - kMaxOverlapFraction) * length;
 
+  // (on a pixel grid many distances and turns are equal, or exactly at a bound: a
+  // comparison that rounding can tip picked another seam for the stroke moved, scaled or
+  // turned, and a corner came and went with it. So the first of equal ones wins, and a
+  // turn at a bound is beyond it, up to kTie of their scale)
+  const double tie = kTie * boundingBoxDiagonal(p);
   double nearest_segment = std::numeric_limits<double>::infinity();
   std::size_t nearest_point = n - 1;
   for (std::size_t j = 1; j < n; ++j) {
     if (s[j - 1] < tail_start) continue;
     nearest_segment = std::min(nearest_segment, segmentDistance(p[0], p[j - 1], p[j]));
-    if ((p[j] - p[0]).norm() < (p[nearest_point] - p[0]).norm()) nearest_point = j;
+    if ((p[j] - p[0]).norm() < (p[nearest_point] - p[0]).norm() - tie) nearest_point = j;
   }
   std::optional<std::size_t> last;
   if (nearest_segment <= reach) last = nearest_point;
@@ -587,12 +595,12 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     // not, the start is a corner with no doubled region around it to cut.
     std::size_t head_end = first;
     for (std::size_t i = first; i < n && s[i] <= kMaxOverlapFraction * length; ++i) {
-      if ((p[i] - p[n - 1]).norm() < (p[head_end] - p[n - 1]).norm()) head_end = i;
+      if ((p[i] - p[n - 1]).norm() < (p[head_end] - p[n - 1]).norm() - tie) head_end = i;
     }
     const auto tail_in = arrival(n - 1);
     const auto head_out = departure(head_end);
     double head_limit = s[head_end], tail_limit = s[m];
-    if (tail_in && head_out && unsignedAngle(*tail_in, *head_out) < kSeamParallel) {
+    if (tail_in && head_out && unsignedAngle(*tail_in, *head_out) < kSeamParallel - kTie) {
       head_limit = std::min(head_limit + kCrossReach * reach, kMaxOverlapFraction * length);
       tail_limit = std::max(tail_limit - kCrossReach * reach, tail_start);
     }
@@ -615,7 +623,7 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
         const double gap = (p[i] - p[j]).norm();
         if (gap < merge || gap > kSeamReach * reach || !out[i]) continue;
         const double turn = seamTurn(j, *in, i, *out[i]);
-        if (turn < best) {
+        if (turn < best - kTie) {
           best = turn;
           better = Seam{i, j + 1};
         }
