@@ -459,9 +459,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // the cap on edits cuts where it did). Nor after Lawson's rounds (reweigh), which move
   // the chain a little and keep its segments: on the shared data no curve changed for not
   // trying them again (a drawn star's fit across corners had tried three hooks three
-  // times each, in vain). The
-  // caller may hand in the verdicts of another selection of the same chain
-  // (SelectionOptions::not_kept).
+  // times each, in vain). The caller may hand in the verdicts of another selection of the
+  // same chain (SelectionOptions::not_kept).
   std::vector<TrialEdit>& not_kept = out.not_kept;
   not_kept = options.not_kept;
   auto take = [&](Attempt&& a) {

@@ -602,8 +602,8 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
     SelectionResult held_fit;
     if (free.fit.improved) {
       // (the free fit's trial edits it did not keep are not tried again: holding the
-      // corners' points only constrains the fit further; on the shared data two strokes
-      // came out with two extrema fewer, no other curve changed)
+      // corners' points only constrains the fit further; on the shared data one $1 brace
+      // came out with two extrema fewer in two of its variants, no other curve changed)
       co.corners = free.corners;
       so.not_kept = free.not_kept;
       held_fit = selectChain(free.fit.segments, points, free.fit.feet, so);
