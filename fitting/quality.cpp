@@ -92,14 +92,14 @@ class EdgeGrid {
     std::vector<int> fill(start_.begin(), start_.end() - 1);
     for (int e = 0; e < edges; ++e) cover(e, [&](std::size_t c) { edges_[fill[c]++] = e; });
   }
+  int edges() const { return static_cast<int>(direction_.size()); }  // (the polyline's points less one)
 
   // The distance from p to the nearest edge, for queries in order along a curve: the
   // `neighbours` edges either side of the previous query's nearest (`edge`, which
   // becomes this one's) give a first bound, which the grid search confirms or beats.
   double distanceAlong(const Vec2& p, int neighbours, int& edge) const {
-    const int edges = static_cast<int>(direction_.size());
     double bound2 = INFINITY;
-    const int from = std::max(0, edge - neighbours), to = std::min(edges - 1, edge + neighbours);
+    const int from = std::max(0, edge - neighbours), to = std::min(edges() - 1, edge + neighbours);
     for (int e = from; e <= to; ++e) {
       const double d2 = distance2(p, e);
       if (d2 < bound2) bound2 = d2, edge = e;
@@ -221,9 +221,8 @@ constexpr double kStrayStep = 2e-3;
 
 namespace {
 
-// The dense measure (strayFromPoints) against the grid of the stroke's polyline of
-// `edges` edges.
-double denseStray(const Curve& curve, const EdgeGrid& grid, int edges, double diagonal) {
+// The dense measure (strayFromPoints) against the grid of the stroke's polyline.
+double denseStray(const Curve& curve, const EdgeGrid& grid, double diagonal) {
   std::vector<Vec2> samples;
   CurveSamples smp;
   for (const CurvePiece& piece : curve.pieces) {
@@ -233,7 +232,7 @@ double denseStray(const Curve& curve, const EdgeGrid& grid, int edges, double di
     samples.insert(samples.end(), smp.point.begin(), smp.point.end());
   }
   // (the first bound from as many edges either side as the points have per sample step)
-  const int neighbours = kNeighbourEdges + 2 * edges / static_cast<int>(samples.size());
+  const int neighbours = kNeighbourEdges + 2 * grid.edges() / static_cast<int>(samples.size());
   double worst = 0.0;
   int edge = 0;
   for (const Vec2& q : samples) {
@@ -247,13 +246,13 @@ double denseStray(const Curve& curve, const EdgeGrid& grid, int edges, double di
 }
 
 // strayWithin against the same grid (limit > 0).
-bool coarselyWithin(const Curve& curve, const EdgeGrid& grid, int edges, double diagonal, double limit) {
+bool coarselyWithin(const Curve& curve, const EdgeGrid& grid, double diagonal, double limit) {
   // (both samplings place their samples within kSamplePrecision of kStrayStep: their
   // distances are off by at most that much each)
   const double slack = 5.0 * 2.0 * kSamplePrecision * kStrayStep * diagonal;
   int total = 0;
   for (const CurvePiece& piece : curve.pieces) total += ceilWithin(piece.segment.length() / limit, 1, 99999) + 1;
-  const int neighbours = kNeighbourEdges + 2 * edges / total;
+  const int neighbours = kNeighbourEdges + 2 * grid.edges() / total;
   CurveSamples smp;
   int edge = 0;
   for (const CurvePiece& piece : curve.pieces) {
@@ -283,7 +282,7 @@ double strayFromPoints(const Curve& curve, std::vector<Vec2> points, double diag
   if (points.size() < 2 || curve.pieces.empty()) return 0.0;
   if (curve.closed) points.push_back(points.front());
   const EdgeGrid grid(points);
-  return denseStray(curve, grid, static_cast<int>(points.size()) - 1, diagonal);
+  return denseStray(curve, grid, diagonal);
 }
 
 bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit) {
@@ -291,16 +290,15 @@ bool strayWithin(const Curve& curve, std::vector<Vec2> points, double diagonal, 
   if (points.size() < 2 || curve.pieces.empty()) return true;
   if (curve.closed) points.push_back(points.front());
   const EdgeGrid grid(points);
-  return coarselyWithin(curve, grid, static_cast<int>(points.size()) - 1, diagonal, limit);
+  return coarselyWithin(curve, grid, diagonal, limit);
 }
 
 double strayBeyond(const Curve& curve, std::vector<Vec2> points, double diagonal, double limit) {
   if (points.size() < 2 || curve.pieces.empty()) return 0.0;
   if (curve.closed) points.push_back(points.front());
   const EdgeGrid grid(points);  // (one grid for both passes)
-  const int edges = static_cast<int>(points.size()) - 1;
-  if (limit > 0.0 && coarselyWithin(curve, grid, edges, diagonal, limit)) return 0.0;
-  const double stray = denseStray(curve, grid, edges, diagonal);
+  if (limit > 0.0 && coarselyWithin(curve, grid, diagonal, limit)) return 0.0;
+  const double stray = denseStray(curve, grid, diagonal);
   return stray > limit ? stray : 0.0;
 }
 
