@@ -89,8 +89,14 @@ double noiseSigma(const std::vector<Vec2>& p, const std::vector<std::size_t>& co
   if (signed_d.empty()) return 0.0;
   std::vector<double> d;
   for (double v : signed_d) d.push_back(std::abs(v));
-  std::sort(d.begin(), d.end());
-  const double q25 = d[d.size() / 4], q50 = d[d.size() / 2], q75 = d[3 * d.size() / 4];
+  // (the three order statistics alone, each selection within the part the last one left:
+  // the same values as a sort, which was 1.5% of the 1,000-point stroke's fit)
+  const std::size_t i25 = d.size() / 4, i50 = d.size() / 2, i75 = 3 * d.size() / 4;
+  const auto at = [&](std::size_t k) { return d.begin() + static_cast<std::ptrdiff_t>(k); };
+  std::nth_element(d.begin(), at(i50), d.end());
+  if (i25 < i50) std::nth_element(d.begin(), at(i25), at(i50));
+  if (i75 > i50) std::nth_element(at(i50 + 1), at(i75), d.end());
+  const double q25 = d[i25], q50 = d[i50], q75 = d[i75];
   const double by_median = q50 / 0.6745;  // median of |N(0,s)| = 0.6745 s
   // Noise spreads |d| as a half-normal (quartiles 0.32 s and 1.15 s), with signs that
   // change between neighbours 80% of the time (their correlation is -56/70). Differences
