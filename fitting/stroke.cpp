@@ -513,10 +513,12 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
   const double tie = kTie * boundingBoxDiagonal(p);
   double nearest_segment = std::numeric_limits<double>::infinity();
   std::size_t nearest_point = n - 1;
+  double nearest_distance = (p[n - 1] - p[0]).norm();
   for (std::size_t j = 1; j < n; ++j) {
     if (s[j - 1] < tail_start) continue;
     nearest_segment = std::min(nearest_segment, segmentDistance(p[0], p[j - 1], p[j]));
-    if ((p[j] - p[0]).norm() < (p[nearest_point] - p[0]).norm() - tie) nearest_point = j;
+    const double d = (p[j] - p[0]).norm();
+    if (d < nearest_distance - tie) nearest_point = j, nearest_distance = d;
   }
   std::optional<std::size_t> last;
   if (nearest_segment <= reach) last = nearest_point;
@@ -594,8 +596,10 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
     // the region extends by kCrossReach * reach at both ends, room for a gentle bridge; if
     // not, the start is a corner with no doubled region around it to cut.
     std::size_t head_end = first;
+    double head_distance = (p[first] - p[n - 1]).norm();
     for (std::size_t i = first; i < n && s[i] <= kMaxOverlapFraction * length; ++i) {
-      if ((p[i] - p[n - 1]).norm() < (p[head_end] - p[n - 1]).norm() - tie) head_end = i;
+      const double d = (p[i] - p[n - 1]).norm();
+      if (d < head_distance - tie) head_end = i, head_distance = d;
     }
     const auto tail_in = arrival(n - 1);
     const auto head_out = departure(head_end);
