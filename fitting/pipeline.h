@@ -59,11 +59,12 @@
 // stray counted). Stage 7 bends no tighter than the tolerance; where the curve misses it
 // (a tight bend the clean-up did not take for a corner), the fit runs again with corners
 // at the bends on the bound, or where none is, at the point farthest from the curve.
-// Where that misses, or still bends tighter, it runs without the bound, then with
-// corners at the bends that came out tighter, and, where one still does (a capped
-// stroke's part), with those corners and the bound everywhere: the bound wins. A rerun
-// keeps at least the first fit's tolerance, and is not kept where it loops away from
-// the stroke.
+// Where that misses, or still bends tighter, it runs without the bound (under a cap on
+// extrema, not where it misses by more than half the tolerance again: that is the cap's
+// cost), then with corners at the bends that came out tighter, and, where one still does
+// (a capped stroke's part), with those corners and the bound everywhere: the bound
+// wins. A rerun keeps at least the first fit's tolerance, and is not kept where it loops
+// away from the stroke.
 
 #include <optional>
 #include <string>

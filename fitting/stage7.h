@@ -25,8 +25,9 @@ inline constexpr double kStrayWarning = 2.0;
 inline constexpr double kAstrayFit = 2.0;
 
 /// How stage 7 starts from a part's spline (where stage 6 has no G2 chain): one segment
-/// shot per span, and where that fit ends astray (kAstrayFit), again from the spans halved
-/// where a shot sets off astray, the closer kept; or only the first (the caller has other
+/// shot per span, and where that fit ends astray (kAstrayFit) but not for the cap on
+/// extrema's merges, again from the spans halved where a shot sets off astray, the closer
+/// kept; or only the first (the caller has other
 /// starts: a first fit far astray is left unedited), or only the second (nothing changes
 /// where halving changes no span).
 enum class SplineStart { kShotThenHalved, kShot, kHalved };
