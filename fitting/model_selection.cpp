@@ -406,15 +406,24 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // them, and only such a chain pays for them. A trial simplification that has to end
   // within `keep_within` does not where it stopped further than kHopelessTrial times that
   // (the trials that fail so paid for most of stage 7's time).
+  // Nor does a fit that must keep the cap on extrema (`keep_cap`: a split's) where its
+  // steps broke it: going on converges further, which adds extrema rather than removes
+  // them (under caps of 0, 1 and 2 on the shared data, no such fit was kept).
   // (an edit renumbers the corners' joints: each fit names the corners of its chain)
+  const bool closed = options.fit.closed;
+  const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
+  auto breaksCap = [&](const std::vector<LaSegment>& segments, const std::vector<ChainCorner>& corners) {
+    return options.max_extrema >= 0 && overExtremaCap(curveOf(segments, corners, closed), diagonal, options.max_extrema);
+  };
   auto fit = [&](const std::vector<LaSegment>& start, const std::vector<ChainFoot>& start_feet,
-                 const std::vector<ChainCorner>& corners, double keep_within = INFINITY, bool standard_errors = false) {
+                 const std::vector<ChainCorner>& corners, double keep_within = INFINITY, bool standard_errors = false,
+                 bool keep_cap = false) {
     ChainFitOptions o = base;
     o.corners = corners;
     o.standard_errors = standard_errors;
     ChainFitResult r = fitChain(start, points, start_feet, o);
     if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance ||
-        r.max_distance > kHopelessTrial * keep_within)
+        r.max_distance > kHopelessTrial * keep_within || (keep_cap && breaksCap(r.segments, corners)))
       return r;
     ChainFitOptions longer = o;
     longer.max_iterations *= options.patience;
@@ -430,26 +439,26 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // of it crashed the window screen on a noisy logarithmic spiral of four turns)
   if (out.fit.report.status == SolveStatus::kBadInput) return out;
   if (out.fit.max_distance > options.hopeless_start) return out;
-  const bool closed = options.fit.closed;
   const double n_points = static_cast<double>(points.size());
   struct Attempt {
     ChainFitResult fit;
     std::vector<ChainCorner> corners;
   };
   // (an edit's chain, rebuilt from its pieces: given where the caller has it already)
-  auto attemptRebuilt = [&](const Edit& e, const std::vector<LaSegment>& rebuilt,
-                            double keep_within) -> std::optional<Attempt> {
+  auto attemptRebuilt = [&](const Edit& e, const std::vector<LaSegment>& rebuilt, double keep_within,
+                            bool keep_cap = false) -> std::optional<Attempt> {
     if (rebuilt.empty()) return std::nullopt;
     std::vector<ChainCorner> corners = cornersOf(e.pieces, out.corners);
-    ChainFitResult r = fit(rebuilt, e.feet, corners, keep_within);
+    ChainFitResult r = fit(rebuilt, e.feet, corners, keep_within, false, keep_cap);
     if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
     return Attempt{std::move(r), std::move(corners)};
   };
-  auto attempt = [&](const std::optional<Edit>& e, double keep_within = INFINITY) -> std::optional<Attempt> {
+  auto attempt = [&](const std::optional<Edit>& e, double keep_within = INFINITY,
+                     bool keep_cap = false) -> std::optional<Attempt> {
     if (!e) return std::nullopt;
     const auto rebuilt = rebuild(e->start, e->theta, e->pieces);
     if (!rebuilt) return std::nullopt;
-    return attemptRebuilt(*e, *rebuilt, keep_within);
+    return attemptRebuilt(*e, *rebuilt, keep_within, keep_cap);
   };
   // The trial edits of the chain out.fit holds that were not kept (a verdict holds for
   // its chain alone). The simplification of slivers ends by trying every candidate in
@@ -665,9 +674,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     }
   };
   // (no part of the chain has more curvature extrema than the cap)
-  const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
   auto withinCap = [&](const ChainFitResult& r, const std::vector<ChainCorner>& corners) {
-    return options.max_extrema < 0 || !overExtremaCap(curveOf(r.segments, corners, closed), diagonal, options.max_extrema);
+    return !breaksCap(r.segments, corners);
   };
   // Least squares minimizes the sum of squares; a chain of the same segments that keeps
   // every point within the tolerance may still exist where it leaves a few outside.
@@ -811,14 +819,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const double margin = std::min(kSplitMargin, options.split_margin / s.length());
     const double u = std::clamp(at.u, margin, 1.0 - margin);
     ++edits;
-    if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u));
+    if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u), INFINITY, true);
     // (a line bends towards the worst point: the arc through its ends with that sagitta,
     // no tighter than the fit allows: a stub line bent so had a curvature of 1e16, and
     // the quadrature of its 1e9 radians took seconds)
     const double side = cross(s.tangent(at.u * s.length()), points[worst] - s.position(at.u * s.length()));
     double bend = 8.0 * side / (s.length() * s.length());
     if (options.fit.max_curvature > 0.0) bend = std::clamp(bend, -options.fit.max_curvature, options.fit.max_curvature);
-    return attempt(bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed));
+    return attempt(bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed), INFINITY, true);
   };
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
   auto helps = [&](const std::optional<Attempt>& r) {

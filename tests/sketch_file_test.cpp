@@ -71,7 +71,9 @@ TEST(SketchFile, RoundTripsStrokesOverridesOptionsAndConstructions) {
     const StrokeSample &p = s.raw.samples[k], &q = b.raw.samples[k];
     EXPECT_EQ(p.p, q.p) << "sample " << k;
     EXPECT_EQ(std::isnan(p.t), std::isnan(q.t)) << "sample " << k;
-    if (!std::isnan(p.t)) EXPECT_EQ(p.t, q.t) << "sample " << k;
+    if (!std::isnan(p.t)) {
+      EXPECT_EQ(p.t, q.t) << "sample " << k;
+    }
     EXPECT_EQ(p.pressure, q.pressure) << "sample " << k;
     EXPECT_EQ(std::isnan(q.tilt_x), k != 3) << "sample " << k;
   }
