@@ -36,6 +36,9 @@ struct PartFit {
   double max_dev = NAN;            // largest distance of the part's points from `segments`, once known
   double stray = NAN;              // largest distance of `segments` from the part's polyline, once known
   SolveReport smoothing, g2;
+  /// The cap on extrema shaped `segments` (merged them down to it, or made them the one LA
+  /// segment or circle it leaves): a miss of the tolerance is then the cap's cost.
+  bool capped = false;
 };
 
 /// The cleaned stroke cut at its corners (one part if it has none). A step more than

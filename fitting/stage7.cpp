@@ -353,11 +353,15 @@ void keepTheCap(PartFit& fit, const Part& part, const FitContext& context) {
       ChainFitResult alone;  // (a circle no fit made)
       alone.segments = {*circle};
       fit = partFitOf(alone, "the closest circle, for the cap on extrema");
+      fit.capped = true;
       fit.max_dev = maxDeviationOf(fit.segments, part.points, context.diagonal);
     }
     return;
   }
-  if (std::optional<PartFit> arc = oneArcPart(part, context, "one LA segment, for the cap on extrema")) fit = std::move(*arc);
+  if (std::optional<PartFit> arc = oneArcPart(part, context, "one LA segment, for the cap on extrema")) {
+    fit = std::move(*arc);
+    fit.capped = true;
+  }
 }
 
 // (fits its chain to the points and selects its segments, fitting/model_selection.h)
@@ -443,6 +447,7 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
   const bool moved = segments.size() != polished.segments.size() || segments.back().end() != polished.segments.back().end();
   fit.max_dev = moved ? maxDeviationOf(segments, part.points, diag) : polished.max_distance;
   fit.warnings.clear();
+  fit.capped = selected.cap_merges > 0;
   fit.segments = segments;
   fit.g2 = {SolveStatus::kConverged, polished.report.iterations, 0.0, "G2 by construction (stage 7)"};
   fit.reports = reportsOf(fit.segments, polished.feet, fit.parameters, *fit.spline, part.closed);

@@ -58,6 +58,7 @@ TEST(KeepTheCap, AnOpenPartOverItBecomesOneSegmentBetweenItsCorners) {
   EXPECT_LT((fit.segments.front().end() - wave.part.points.back()).norm(), 1e-9 * diagonal);
   EXPECT_NEAR(fit.max_dev, maxDistance(fit.segments, wave.part.points), 1e-3 * diagonal);
   ASSERT_EQ(fit.reports.size(), 1u);
+  EXPECT_TRUE(fit.capped) << "its miss is the cap's: the pipeline tries no other fit to mend it";
 }
 
 // Without a cap, or within it, the part's chain stays as it is.
@@ -71,6 +72,7 @@ TEST(KeepTheCap, APartWithinItStaysAsItIs) {
     keepTheCap(fit, wave.part, c.of(1.0, boundingBoxDiagonal(wave.part.points)));
     ASSERT_EQ(fit.segments.size(), wave.chain.size()) << "cap " << cap;
     EXPECT_EQ(fit.segments.back().end(), wave.chain.back().end()) << "cap " << cap;
+    EXPECT_FALSE(fit.capped) << "cap " << cap;
   }
 }
 
@@ -99,6 +101,7 @@ TEST(KeepTheCap, AClosedPartUnderACapBelowFourBecomesTheClosestCircle) {
   EXPECT_TRUE(fit.segments.front().isCircular());
   EXPECT_NEAR(1.0 / std::abs(fit.segments.front().kappaStart()), 37.0, 1.5);  // between the half axes
   EXPECT_NEAR(fit.max_dev, maxDistance(fit.segments, part.points), 0.05);
+  EXPECT_TRUE(fit.capped);
 }
 
 // Points on a circular arc of radius 80 turning 100 degrees: the closest arc between their
