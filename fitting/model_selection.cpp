@@ -449,7 +449,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
                             bool keep_cap = false) -> std::optional<Attempt> {
     if (rebuilt.empty()) return std::nullopt;
     std::vector<ChainCorner> corners = cornersOf(e.pieces, out.corners);
-    ChainFitResult r = fit(rebuilt, e.feet, corners, keep_within, false, keep_cap);
+    ChainFitResult r = fit(rebuilt, e.feet, corners, keep_within, /*standard_errors=*/false, keep_cap);
     if (r.report.status == SolveStatus::kBadInput) return std::nullopt;
     return Attempt{std::move(r), std::move(corners)};
   };
@@ -819,14 +819,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const double margin = std::min(kSplitMargin, options.split_margin / s.length());
     const double u = std::clamp(at.u, margin, 1.0 - margin);
     ++edits;
-    if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u), INFINITY, true);
+    if (!s.isStraight()) return attempt(split(from.segments, from.feet, out.corners, at.segment, u), INFINITY, /*keep_cap=*/true);
     // (a line bends towards the worst point: the arc through its ends with that sagitta,
     // no tighter than the fit allows: a stub line bent so had a curvature of 1e16, and
     // the quadrature of its 1e9 radians took seconds)
     const double side = cross(s.tangent(at.u * s.length()), points[worst] - s.position(at.u * s.length()));
     double bend = 8.0 * side / (s.length() * s.length());
     if (options.fit.max_curvature > 0.0) bend = std::clamp(bend, -options.fit.max_curvature, options.fit.max_curvature);
-    return attempt(bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed), INFINITY, true);
+    return attempt(bendLine(from.segments, from.feet, out.corners, at.segment, u, bend, closed), INFINITY, /*keep_cap=*/true);
   };
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
   auto helps = [&](const std::optional<Attempt>& r) {

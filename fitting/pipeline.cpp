@@ -389,13 +389,13 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     for (const Part& part : parts) fits.push_back(fitOne(part, true));
   // A corner is the clean-up's reading of the stroke, and a tight bend can pass for one.
   // Where a part beside a corner misses the tolerance and the two parts fitted as one
-  // smooth part keep it, the corner goes. Not where each part that misses has a chain the
-  // cap on extrema shaped (PartFit::capped): that miss is the cap's, and one smooth part
-  // has the cap of one (under caps of 0, 1 and 2 on the shared data, --variants=2, none
-  // of 346 such merges was kept; without them, the capped fits take 12-16% less time). (The
-  // corner after part k: corners[k] of an open stroke, corners[k + 1] of a closed one,
-  // whose corners[0] is its start; a closed stroke's only corner joins its one part to
-  // itself.)
+  // smooth part keep it, the corner goes. Not where each part that misses has a chain
+  // the cap on extrema shaped (PartFit::capped): that miss is the cap's, and one smooth
+  // part has the cap of one (under caps of 0, 1 and 2 on the shared data, --variants=2,
+  // none of 346 such merges was kept; without them the capped fits take 12-16% less
+  // time). (The corner after part k: corners[k] of an open stroke, corners[k + 1] of a
+  // closed one, whose corners[0] is its start; a closed stroke's only corner joins its
+  // one part to itself.)
   const bool closed = r.cleaned.closed;
   // (a closed stroke's one part has a seam corner only if the clean-up found corners:
   // without, its points do not end with the start again)
