@@ -412,6 +412,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (an edit renumbers the corners' joints: each fit names the corners of its chain)
   const bool closed = options.fit.closed;
   const double diagonal = options.diagonal > 0.0 ? options.diagonal : boundingBoxDiagonal(points);
+  // (some part of the chain has more curvature extrema than the cap)
   auto breaksCap = [&](const std::vector<LaSegment>& segments, const std::vector<ChainCorner>& corners) {
     return options.max_extrema >= 0 && overExtremaCap(curveOf(segments, corners, closed), diagonal, options.max_extrema);
   };
@@ -673,10 +674,6 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       }
     }
   };
-  // (no part of the chain has more curvature extrema than the cap)
-  auto withinCap = [&](const ChainFitResult& r, const std::vector<ChainCorner>& corners) {
-    return !breaksCap(r.segments, corners);
-  };
   // Least squares minimizes the sum of squares; a chain of the same segments that keeps
   // every point within the tolerance may still exist where it leaves a few outside.
   // Lawson's iteration looks for it: each round multiplies every point's weight by its
@@ -695,7 +692,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       weighted.weights = weights;
       weighted.corners = out.corners;
       const ChainFitResult r = fitChain(out.fit.segments, points, out.fit.feet, weighted);
-      if (!r.improved || !(r.max_distance < out.fit.max_distance) || !withinCap(r, out.corners)) break;
+      if (!r.improved || !(r.max_distance < out.fit.max_distance) || breaksCap(r.segments, out.corners)) break;
       const double gain = out.fit.max_distance - r.max_distance;
       out.fit = r;
       const int rounds_left = options.reweighing_rounds - round - 1;
@@ -831,7 +828,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // (a split that barely helps is not the missing segment: the chain is stuck elsewhere)
   auto helps = [&](const std::optional<Attempt>& r) {
     return r && (r->fit.max_distance <= options.tolerance || r->fit.max_distance < kMarkedGain * out.fit.max_distance) &&
-           withinCap(r->fit, r->corners);
+           !breaksCap(r->fit.segments, r->corners);
   };
   // Splits while some point is out of tolerance (and the split helps).
   while (options.refine && edits < options.max_edits && out.fit.max_distance > options.tolerance && !out.fit.feet.empty() &&

@@ -400,10 +400,10 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (a closed stroke's one part has a seam corner only if the clean-up found corners:
   // without, its points do not end with the start again)
   const bool seam_corner = closed && parts.size() == 1 && !r.cleaned.corners.empty();
+  auto withinOrCapped = [&](const PartFit& f) { return f.max_dev <= r.tolerance || f.capped; };
   for (std::size_t k = 0; polishing && (k + 1 < parts.size() || (seam_corner && k == 0)) && !context.budget.spent();) {
     const bool seam = k + 1 == parts.size();
     const PartFit& next = seam ? fits[0] : fits[k + 1];
-    auto withinOrCapped = [&](const PartFit& f) { return f.max_dev <= r.tolerance || f.capped; };
     if (withinOrCapped(fits[k]) && withinOrCapped(next)) {
       ++k;
       continue;
