@@ -68,4 +68,30 @@ inline Stroke variantOf(const Stroke& stroke, int k) {
   return out;
 }
 
+/// How a device or an importer may have handed the samples over (data_benchmark
+/// --handed-over): as drawn; each point averaged with its neighbours by [1 2 1] / 4, the
+/// ends kept (a tablet driver's smoothing: the noise then shared by neighbours); or with
+/// the midpoint of every step filled in (an importer's resampling). The same strokes:
+/// the fit should read the same noise and draw about the same curves.
+enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints };
+
+inline Stroke handedOver(const Stroke& stroke, HandedOver how) {
+  const std::vector<StrokeSample>& in = stroke.samples;
+  Stroke out = stroke;
+  if (how == HandedOver::kSmoothed) {
+    for (std::size_t i = 1; i + 1 < in.size(); ++i) out.samples[i].p = (in[i - 1].p + 2.0 * in[i].p + in[i + 1].p) / 4.0;
+  } else if (how == HandedOver::kMidpoints && !in.empty()) {
+    out.samples.clear();
+    for (std::size_t i = 0; i + 1 < in.size(); ++i) {
+      out.samples.push_back(in[i]);
+      StrokeSample mid = in[i];
+      mid.p = (in[i].p + in[i + 1].p) / 2.0;
+      mid.t = (in[i].t + in[i + 1].t) / 2.0;  // (NaN stays NaN)
+      out.samples.push_back(mid);
+    }
+    out.samples.push_back(in.back());
+  }
+  return out;
+}
+
 }  // namespace la::test

@@ -21,7 +21,7 @@
 // the one with the tightest bend, and with a cap, every stroke with a part over it.
 //
 //   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K]
-//                                         [--repeats=R] [--data=DIR] [--rows=FILE]
+//                                         [--repeats=R] [--handed-over=HOW] [--data=DIR] [--rows=FILE]
 //
 // --max-extrema=N  FitOptions::segmentation.max_extrema = N (fitting/segmentation.h),
 //                  and the table counts the parts over N
@@ -43,6 +43,10 @@
 //                  the 90th percentile). A fit is deterministic, so every repeat must give
 //                  the same figures; a stroke whose figures differ is listed below the
 //                  table (with a time budget they may: where it runs out depends on the load).
+// --handed-over=HOW  every stroke's samples as a device or an importer may hand them over
+//                  (test::handedOver): `smoothed` by a tablet driver's [1 2 1] / 4 filter, or
+//                  with the `midpoints` of its steps filled in; the same strokes, so the
+//                  figures should stay near those of the strokes as drawn
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // --rows=FILE      also every stroke's figures, one CSV row each (data set, stroke, time ms,
 //                  segments, extrema_dense, max_dev/tol, min_radius/tol), to compare two
@@ -80,6 +84,7 @@ struct Settings {
   FitOptions options;  // the defaults, with the flags applied
   int variants = 1;
   int repeats = 1;
+  test::HandedOver handed_over = test::HandedOver::kAsDrawn;
   fs::path data = LAFAIR_SHARED_DATA_DIR;
   fs::path rows;  // (empty: none written)
 };
@@ -131,7 +136,7 @@ void BM_FitDataSet(benchmark::State& state, std::size_t index) {
       for (std::size_t k = 0; k < some.size(); ++k) {
         where.push_back(fs::relative(file, g_settings.data).string() + " #" + std::to_string(k) +
                         (v > 0 ? " variant " + std::to_string(v) : ""));
-        strokes.push_back(test::variantOf(some[k], v));
+        strokes.push_back(test::variantOf(test::handedOver(some[k], g_settings.handed_over), v));
       }
   }
   if (strokes.empty()) {
@@ -216,9 +221,13 @@ void printRow(const char* name, const SetFigures& set, int cap) {
 void printTable() {
   const FitOptions& o = g_settings.options;
   const int cap = o.segmentation.max_extrema;
-  std::printf("\nShared data %s; options: %s, max_extrema %d, time budget %g ms\n",
-              g_settings.data.lexically_normal().string().c_str(), o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)",
-              cap, o.time_budget_ms);
+  const test::HandedOver how = g_settings.handed_over;
+  std::printf("\nShared data %s%s; options: %s, max_extrema %d, time budget %g ms\n",
+              g_settings.data.lexically_normal().string().c_str(),
+              how == test::HandedOver::kSmoothed    ? " (smoothed [1 2 1] / 4)"
+              : how == test::HandedOver::kMidpoints ? " (midpoints filled in)"
+                                                    : "",
+              o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)", cap, o.time_budget_ms);
   std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s | %-16s%s\n", "", "", "", "", "time ms", "segments",
               "extrema_dense", "max_dev/tol", "min_radius/tol", "left out %", cap >= 0 ? " | parts over the cap" : "");
   std::printf("%-12s %5s %7s %4s |%7s%7s%7s%7s |%4s%4s%4s%4s |%4s%4s%4s%4s |%6s%6s%6s%6s | %8s %5s %6s | %5s %5s %4s\n",
@@ -291,6 +300,12 @@ bool takeFlags(int& argc, char** argv) {
       if (!numberFlag(arg, "--variants=", 1, 8, g_settings.variants)) return false;
     } else if (arg.starts_with("--repeats=")) {
       if (!numberFlag(arg, "--repeats=", 1, 10, g_settings.repeats)) return false;
+    } else if (arg == "--handed-over=smoothed") {
+      g_settings.handed_over = test::HandedOver::kSmoothed;
+    } else if (arg == "--handed-over=midpoints") {
+      g_settings.handed_over = test::HandedOver::kMidpoints;
+    } else if (arg.starts_with("--handed-over=")) {
+      return false;
     } else if (arg == "--paper-only") {
       g_settings.options.polish = false;
     } else if (arg.starts_with("--data=")) {
@@ -312,8 +327,8 @@ bool takeFlags(int& argc, char** argv) {
 int main(int argc, char** argv) {
   if (!la::takeFlags(argc, argv)) {
     std::fprintf(stderr,
-                 "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--repeats=R] [--data=DIR] "
-                 "[--rows=FILE] [benchmark flags]\n",
+                 "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--repeats=R] "
+                 "[--handed-over=smoothed|midpoints] [--data=DIR] [--rows=FILE] [benchmark flags]\n",
                  argv[0]);
     return 2;
   }
