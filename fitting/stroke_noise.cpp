@@ -36,6 +36,14 @@ constexpr double kZigzagSignChanges = 0.95;
 // this many times, the corners set it (noiseOf).
 constexpr double kCornersSetTheNoise = 2.0;
 
+// Noise that neighbouring samples share (a tablet driver's smoothing) is read from the
+// differences of every second and every third sample (sharedNoiseAbove) where that reading is
+// more than this many times the neighbours' one...
+constexpr double kSharedNoise = 2.0;
+// ... and the third sample's differences are within this many times the second's: the
+// curve's own bending, which grows as lag^4 in them, would make them 5 times larger.
+constexpr double kBendingShare = 2.0;
+
 // The noise floor of the tolerance is this many standard deviations of the points'
 // estimated noise, at least: a point's distance from the curve (its noise across it)
 // exceeds 4 sigma with probability 6e-5, so some point of 160 with 1%. A stroke of more
@@ -132,6 +140,23 @@ double gridStep(const std::vector<Vec2>& p, int axis) {
   return step;
 }
 
+// The noise that neighbouring samples share, from the fourth differences of every second
+// and every third sample (noiseSigma at lags 2 and 3). Each reads noise^2 + (L^4 b)^2, b
+// the curve's bending: the two solved for the noise (the bending's share taken out, 256
+// of it at lag 2 where 6,561 at lag 3). A [1 2 1]/4 filter over white noise leaves a
+// sixth of the points' noise in the differences of neighbours, 85% in these. 0 where it
+// is not above `least` (every third's differences then not taken), where the bending
+// fills them (kBendingShare), or where the points are too few.
+double sharedNoiseAbove(double least, const std::vector<Vec2>& p, const std::vector<std::size_t>& corners) {
+  constexpr double kBending = 256.0 / (6561.0 - 256.0);
+  const double s2 = noiseSigma(p, corners, 2);
+  if (!(std::sqrt(1.0 + kBending) * s2 > least)) return 0.0;
+  const double s3 = noiseSigma(p, corners, 3);
+  if (!(s3 > 0.0) || s3 > kBendingShare * s2) return 0.0;
+  const double v = (1.0 + kBending) * s2 * s2 - kBending * s3 * s3;
+  return v > least * least ? std::sqrt(v) : 0.0;
+}
+
 }  // namespace
 
 // The points' noise: sigma per coordinate (the estimate above, plus the quantization of
@@ -140,7 +165,9 @@ double gridStep(const std::vector<Vec2>& p, int axis) {
 // pointer's tremor and rounding repeat over neighbouring samples (stairs): the noise is
 // taken at lag 2 as well, the larger estimate kept. Larger lags, and sparser samples,
 // would span the curve's own bends (its share grows as lag^4): at lag 3 small glyphs'
-// tolerances rose up to 4x, and lag 2 on strokes sampled every 3-8 pixels 1.6-3x.
+// tolerances rose up to 4x, and lag 2 on strokes sampled every 3-8 pixels 1.6-3x; so
+// lags 2 and 3 serve only where together they read the bending apart from the noise
+// (sharedNoiseAbove).
 Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corners) {
   const double hx = gridStep(p, 0), hy = gridStep(p, 1);
   const bool on_grid = hx > 0.0 && hy > 0.0;
@@ -155,6 +182,10 @@ Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corner
   double sigma = sigmaOf({});
   if (!corners.empty())
     if (const double without = sigmaOf(corners); kCornersSetTheNoise * without < sigma) sigma = without;
+  // Noise the samples share hides from the neighbours' differences: a stroke smoothed by
+  // its device read as nearly noise-free, and its fit followed the wobble the filter left
+  // (the shared strokes so smoothed: 5 curvature extrema at the median, fits of seconds).
+  if (const double shared = sharedNoiseAbove(kSharedNoise * sigma, p, corners); shared > 0.0) sigma = shared;
   Noise n;
   n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
   n.floor = std::max(floorSigmas(p.size()) * sigma, on_grid ? kQuantizationFloor * h : 0.0);

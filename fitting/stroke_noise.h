@@ -1,7 +1,8 @@
 #pragma once
 // The noise of a stroke's points, which sets the smallest tolerance a fit can keep:
 // their jitter, estimated from fourth differences (which cancel the curve's own
-// bending), and for points on a pixel grid the quantization (stroke_noise.cpp says how).
+// bending), also of every second and third sample where neighbours share it (a device's
+// smoothing), and for points on a pixel grid the quantization (stroke_noise.cpp says how).
 
 #include <vector>
 
