@@ -185,8 +185,10 @@ Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corner
   // Noise the samples share hides from the neighbours' differences: a stroke smoothed by
   // its device read as nearly noise-free, and its fit followed the wobble the filter left
   // (data_benchmark --handed-over=smoothed: 5 extrema at the median where the drawn
-  // strokes have 2, time p99 0.5 s).
-  if (const double shared = sharedNoiseAbove(kSharedNoise * sigma, p, corners); shared > 0.0) sigma = shared;
+  // strokes have 2, time p99 0.5 s). Not on stairs: their estimate holds every second
+  // sample's reading already (on the shared data, with and without this, the same curves).
+  if (!stairs)
+    if (const double shared = sharedNoiseAbove(kSharedNoise * sigma, p, corners); shared > 0.0) sigma = shared;
   Noise n;
   n.sigma = on_grid ? std::sqrt(sigma * sigma + h * h / 12.0) : sigma;
   n.floor = std::max(floorSigmas(p.size()) * sigma, on_grid ? kQuantizationFloor * h : 0.0);
