@@ -165,12 +165,13 @@ std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
 }
 
 // The whole pipeline, stage 7's radius bounded as `radius_bound` says, with corners also
-// where the points turn most near each of `corners_at` (cornerNear), and a tolerance of at
-// least `least_tolerance`; the time budget counts from `start`, and `budget` (a share of
-// the work, on the stroke's meter) may end the fit sooner.
+// where the points turn most near each of `corners_at` (cornerNear), and the tolerance
+// `first_tolerance` where this is a rerun (0: the first fit, whose tolerance is the one
+// asked for, raised to the points' noise floor); the time budget counts from `start`, and
+// `budget` (a share of the work, on the stroke's meter) may end the fit sooner.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, RadiusBound radius_bound,
                   Clock::time_point start, const Budget& budget, const std::vector<Vec2>& corners_at = {},
-                  double least_tolerance = 0.0) {
+                  double first_tolerance = 0.0) {
   FitResult r;
   const auto cleanup_start = Clock::now();  // (a rerun's start is the first run's)
   r.cleaned = cleanStroke(stroke, options.cleanup, hook_tolerance);
@@ -180,7 +181,13 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   const double diag = r.cleaned.diagonal;
   r.requested_tolerance = options.tolerance > 0.0 ? options.tolerance : options.tolerance_fraction * diag;
   const Noise noise = noiseOf(r.cleaned.points, r.cleaned.corners);
-  r.tolerance = std::max({r.requested_tolerance, noise.floor, least_tolerance});
+  // A rerun keeps the first fit's tolerance: the noise is the stroke's, and the corners a
+  // rerun adds change its reading either way. Its parts are shorter, and read lower (a
+  // noisy 8-point stroke's tolerance fell from 0.66 to 0.11, and 6 segments followed its
+  // noise); a closed stroke's points start at the first corner, so the differences across
+  // the drawn seam count, and read higher (a drawn circle under a cap of 2 extrema: 1.54
+  // -> 3.73, its capped curve then measured against a tolerance 2.4 times looser).
+  r.tolerance = first_tolerance > 0.0 ? first_tolerance : std::max(r.requested_tolerance, noise.floor);
   r.smoothing = {SolveStatus::kConverged, 0, 0.0, "ok"};
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
@@ -591,10 +598,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit && bendsTighterThanTolerance(f);
   };
   // The stroke fitted again with corners at `bends` as well as at `earlier` ones, with
-  // the bound, in about the work the fit took so far, and at least the first fit's
-  // tolerance (corners split the points into shorter parts, whose noise reads lower: a
-  // noisy 8-point stroke's tolerance fell from 0.66 to 0.11, and 6 segments followed its
-  // noise); nullopt where no corner can go there.
+  // the bound, in about the work the fit took so far, and the first fit's tolerance
+  // (fitOnce); nullopt where no corner can go there.
   auto corneredAt = [&](const FitResult& from, const std::vector<Vec2>& earlier,
                         const std::vector<Vec2>& bends) -> std::optional<FitResult> {
     CleanStroke with = from.cleaned;  // (where no corner can go, no fit is tried)

@@ -63,7 +63,7 @@
 // extrema, not where it misses by more than half the tolerance again: that is the cap's
 // cost), then with corners at the bends that came out tighter, and, where one still does
 // (a capped stroke's part), with those corners and the bound everywhere: the bound
-// wins. A rerun keeps at least the first fit's tolerance, and is not kept where it loops
+// wins. A rerun keeps the first fit's tolerance, and is not kept where it loops
 // away from the stroke.
 
 #include <optional>
