@@ -36,6 +36,8 @@
 #include <sstream>
 #include <string>
 
+#include "fitting/subdivision.h"
+
 namespace la {
 namespace {
 
@@ -160,10 +162,26 @@ struct Points {
 };
 
 // The fraction of the drawn length (the finite samples' polyline) spanned by the steps
-// that touch a left-out sample (not a duplicate: it lies on a kept point).
+// that touch a left-out sample (not a duplicate: it lies on a kept point; a resampler's
+// point lies on the step between two samples, and is out where one of them is).
 double leftOutFraction(const Stroke& raw, const std::vector<LeftOutPoint>& left_out) {
-  std::vector<bool> out(raw.samples.size(), false);
-  for (const LeftOutPoint& l : left_out) out[l.sample] = l.why != LeftOutReason::kDuplicate;
+  const std::size_t n = raw.samples.size();
+  std::vector<bool> out(n, false), resampled(n, false);
+  for (const LeftOutPoint& l : left_out) {
+    out[l.sample] = !liesOnKeptPoints(l.why);
+    resampled[l.sample] = l.why == LeftOutReason::kResampled;
+  }
+  // (each run of a resampler's points takes the samples' either side)
+  for (std::size_t i = 0; i < n;) {
+    if (!resampled[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < n && resampled[end]) ++end;
+    const bool either = (i > 0 && out[i - 1]) || (end < n && out[end]);
+    for (; i < end; ++i) out[i] = either;
+  }
   double drawn = 0.0, dropped = 0.0;
   std::size_t prev = raw.samples.size();
   for (std::size_t i = 0; i < raw.samples.size(); ++i) {
@@ -643,6 +661,7 @@ std::optional<Seam> findSeam(const std::vector<Vec2>& p, const Scales& scales, c
   std::ostringstream message;
   message << "stroke cannot be fitted: " << what << " (" << samples << " samples: " << c.removed_invalid
           << " non-finite, " << c.removed_duplicates << " duplicates";
+  if (c.removed_resampled > 0) message << ", " << c.removed_resampled << " resampled";
   if (c.trimmed_start + c.trimmed_end > 0) message << ", " << c.trimmed_start + c.trimmed_end << " trimmed as hooks";
   if (c.removed_overlap > 0) message << ", " << c.removed_overlap << " cut as closing overlap";
   message << ", " << c.points.size() << " left)";
@@ -719,6 +738,26 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double
   }
   // From here on no step removes points if that would leave them collinear: a stroke
   // that can be fitted stays so.
+
+  // 1b. Points a resampler put evenly on the chords between the samples say nothing the
+  // samples do not (fitting/subdivision.h): left out like duplicates (a 4-fold
+  // subdivision in two rounds). (Not on a straight stroke: evenly sampled, its points
+  // are all midpoints, and its line is fitted to them as they are.)
+  for (std::vector<bool> sample; !(sample = subdivisionSamples(pts.p)).empty();) {
+    std::vector<Vec2> p;
+    std::vector<std::size_t> src;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      if (sample[i]) {
+        p.push_back(pts.p[i]);
+        src.push_back(pts.src[i]);
+      } else {
+        ++result.removed_resampled;
+        result.left_out.push_back({pts.src[i], LeftOutReason::kResampled});
+      }
+    }
+    pts.p = std::move(p);
+    pts.src = std::move(src);
+  }
 
   // 2. (A long first or last step is a segment of the stroke, drawn or not: nothing is
   // dropped for its length alone. Hooks, which turn sharply, are step 4.)
@@ -806,10 +845,15 @@ bool addCorner(CleanStroke& stroke, std::size_t index) {
   return true;
 }
 
+bool liesOnKeptPoints(LeftOutReason reason) {
+  return reason == LeftOutReason::kDuplicate || reason == LeftOutReason::kResampled;
+}
+
 const char* toString(LeftOutReason reason) {
   switch (reason) {
     case LeftOutReason::kNonFinite: return "not a finite number";
     case LeftOutReason::kDuplicate: return "duplicate";
+    case LeftOutReason::kResampled: return "resampled";
     case LeftOutReason::kStartHook: return "pen-down hook";
     case LeftOutReason::kEndHook: return "pen-up hook";
     case LeftOutReason::kOverlap: return "closing overlap";

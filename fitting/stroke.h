@@ -1,11 +1,14 @@
 #pragma once
 // A pen stroke as recorded, and the clean-up before fitting (DESIGN.md section 3,
-// stage 1): NaNs and duplicate points out, pen-down / pen-up hooks trimmed, deliberate
-// corners found, closed strokes recognised. The raw stroke is never modified.
+// stage 1): NaNs, duplicate and resampled points out, pen-down / pen-up hooks trimmed,
+// deliberate corners found, closed strokes recognised. The raw stroke is never modified.
 //
 // The steps, in order (fitting/stroke.cpp explains each one and its constants):
 //  1. drop non-finite samples, then consecutive duplicates (distance <= 1e-9 of the
-//     bounding-box diagonal; the first of a run is kept);
+//     bounding-box diagonal; the first of a run is kept), then, unless the points are
+//     all on one line, the points a resampler put evenly between the samples
+//     (fitting/subdivision.h: a stroke subdivided 2-, 3- or 4-fold is cleaned and fitted
+//     as drawn);
 //  2. nothing else is dropped at the ends for its length alone: a long first or last
 //     step is a segment of the stroke (a digitizer's jump to where the drawing starts
 //     is drawn as such);
@@ -97,8 +100,10 @@ struct CleanupOptions {
 };
 
 /// Why the clean-up left a raw sample out of the points to fit.
-enum class LeftOutReason { kNonFinite, kDuplicate, kStartHook, kEndHook, kOverlap };
+enum class LeftOutReason { kNonFinite, kDuplicate, kResampled, kStartHook, kEndHook, kOverlap };
 const char* toString(LeftOutReason reason);
+/// A duplicate or a resampler's point: it lies on the polyline of the points kept.
+bool liesOnKeptPoints(LeftOutReason reason);
 
 struct LeftOutPoint {
   std::size_t sample = 0;  // index in the raw stroke
@@ -122,6 +127,9 @@ struct CleanStroke {
   std::size_t removed_overlap = 0;   // raw samples cut where a closed stroke overlaps its start
   std::size_t removed_invalid = 0;   // NaN / infinite samples dropped
   std::size_t removed_duplicates = 0;
+  /// Points a resampler put between the samples (fitting/subdivision.h); like duplicates,
+  /// they lie on the kept points' polyline.
+  std::size_t removed_resampled = 0;
   /// Every raw sample left out, in raw order, with why.
   std::vector<LeftOutPoint> left_out;
   /// The fraction of the drawn length (the raw stroke's finite polyline) that the steps
@@ -131,7 +139,7 @@ struct CleanStroke {
   double diagonal = 0.0;             // bounding-box diagonal of `points`
   // Every raw sample is accounted for exactly once:
   // samples = points + trimmed_start + trimmed_end + removed_overlap + removed_invalid
-  //           + removed_duplicates.
+  //           + removed_duplicates + removed_resampled.
 };
 
 /// Throws StrokeError if fewer than 3 distinct finite points remain (nothing to fair);

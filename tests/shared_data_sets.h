@@ -68,6 +68,27 @@ inline Stroke variantOf(const Stroke& stroke, int k) {
   return out;
 }
 
+/// The stroke subdivided k-fold, as a resampler does: k - 1 points evenly on each step
+/// between two samples (their times too; NaN stays NaN).
+inline Stroke subdivided(const Stroke& stroke, int k) {
+  const std::vector<StrokeSample>& in = stroke.samples;
+  Stroke out = stroke;
+  if (in.empty()) return out;
+  out.samples.clear();
+  for (std::size_t i = 0; i + 1 < in.size(); ++i) {
+    out.samples.push_back(in[i]);
+    for (int j = 1; j < k; ++j) {
+      StrokeSample s = in[i];
+      const double f = static_cast<double>(j) / k;
+      s.p = (1.0 - f) * in[i].p + f * in[i + 1].p;
+      s.t = (1.0 - f) * in[i].t + f * in[i + 1].t;
+      out.samples.push_back(s);
+    }
+  }
+  out.samples.push_back(in.back());
+  return out;
+}
+
 /// How a device or an importer may have handed the samples over (data_benchmark
 /// --handed-over): as drawn; each point averaged with its neighbours by [1 2 1] / 4, the
 /// ends kept (a tablet driver's smoothing: the noise then shared by neighbours); or with
@@ -76,20 +97,11 @@ inline Stroke variantOf(const Stroke& stroke, int k) {
 enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints };
 
 inline Stroke handedOver(const Stroke& stroke, HandedOver how) {
-  const std::vector<StrokeSample>& in = stroke.samples;
+  if (how == HandedOver::kMidpoints) return subdivided(stroke, 2);
   Stroke out = stroke;
   if (how == HandedOver::kSmoothed) {
+    const std::vector<StrokeSample>& in = stroke.samples;
     for (std::size_t i = 1; i + 1 < in.size(); ++i) out.samples[i].p = (in[i - 1].p + 2.0 * in[i].p + in[i + 1].p) / 4.0;
-  } else if (how == HandedOver::kMidpoints && !in.empty()) {
-    out.samples.clear();
-    for (std::size_t i = 0; i + 1 < in.size(); ++i) {
-      out.samples.push_back(in[i]);
-      StrokeSample mid = in[i];
-      mid.p = (in[i].p + in[i + 1].p) / 2.0;
-      mid.t = (in[i].t + in[i + 1].t) / 2.0;  // (NaN stays NaN)
-      out.samples.push_back(mid);
-    }
-    out.samples.push_back(in.back());
   }
   return out;
 }

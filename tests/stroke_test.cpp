@@ -116,7 +116,7 @@ std::string describe(const CleanStroke& c) {
 /// raw sample it names, in stroke order (cyclically when closed), corners valid.
 void expectConsistent(const Stroke& raw, const CleanStroke& c) {
   EXPECT_EQ(raw.samples.size(), c.points.size() + c.trimmed_start + c.trimmed_end + c.removed_overlap +
-                                    c.removed_invalid + c.removed_duplicates);
+                                    c.removed_invalid + c.removed_duplicates + c.removed_resampled);
   ASSERT_EQ(c.points.size(), c.source.size());
   ASSERT_GE(c.points.size(), 3u);
   // every raw sample either kept or listed as left out, once

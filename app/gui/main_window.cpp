@@ -787,10 +787,11 @@ void MainWindow::documentChanged() {
   const QualityFigures& q = last->quality;
   const bool refining = std::any_of(m_document.strokes().begin(), m_document.strokes().end(),
                                     [](const DocumentStroke& s) { return s.provisional; });
-  // (what the clean-up left out, said where it is more than duplicates)
+  // (what the clean-up left out, said where it is more than duplicates and a resampler's
+  // points, which lie on the points kept)
   const auto& left_out = last->cleaned.left_out;
   const auto duplicates = std::count_if(left_out.begin(), left_out.end(),
-                                        [](const LeftOutPoint& l) { return l.why == LeftOutReason::kDuplicate; });
+                                        [](const LeftOutPoint& l) { return liesOnKeptPoints(l.why); });
   const QString left = static_cast<std::size_t>(duplicates) == left_out.size()
                            ? QString()
                            : QString(" · %1 samples left out (%2% of the length)")

@@ -81,7 +81,8 @@ nlohmann::json fitResultToJson(const FitResult& r, const Stroke& raw, bool with_
                        {"removed_overlap", r.cleaned.removed_overlap},
                        {"source", r.cleaned.source},
                        {"removed_invalid", r.cleaned.removed_invalid},
-                       {"removed_duplicates", r.cleaned.removed_duplicates}};
+                       {"removed_duplicates", r.cleaned.removed_duplicates},
+                       {"removed_resampled", r.cleaned.removed_resampled}};
   nlohmann::json splines = nlohmann::json::array();
   for (const CubicBSpline& s : r.splines)
     splines.push_back({{"degree", 3}, {"periodic", s.isPeriodic()}, {"knots", s.knots()}, {"control", points(s.control())}});

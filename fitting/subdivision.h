@@ -1,0 +1,27 @@
+#pragma once
+// Strokes a resampler subdivided: between every two samples it put k - 1 points evenly on
+// their chord (an importer's or a device's upsampling), so every point but the samples
+// is the midpoint of its neighbours. Such points say nothing the samples do not: fitted,
+// they hid the samples' noise (every fourth difference spans a midpoint: the shared
+// strokes subdivided 2-fold read their noise at about half, the fit followed the samples'
+// wobble, 6 curvature extrema at the median where the strokes have 2, 16 of 207 curves
+// off the tolerance, up to 2.2 s), shortened the clean-up's steps (a pen-down hook of two
+// samples went unseen), and pulled the curve onto the chords. The clean-up
+// (fitting/stroke.h) leaves them out, as it does duplicates: the stroke is fitted as
+// drawn, and the curve is measured against every point.
+
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace la {
+
+/// Which of `points` are the samples, where a resampler subdivided them 2- or 3-fold (a
+/// 4-fold subdivision is a 2-fold one twice): the first and last point and every k-th
+/// between, the one class of the points by index (mod k) that is not all at midpoints of
+/// their neighbours. Empty where the points are not so (the drawn strokes: at most 75% of
+/// one class of two are midpoints, a pointer walking a pixel per sample; an evenly
+/// sampled straight or gently curved outline: every class).
+std::vector<bool> subdivisionSamples(const std::vector<Vec2>& points);
+
+}  // namespace la

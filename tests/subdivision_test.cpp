@@ -1,0 +1,127 @@
+// fitting/subdivision.h: a resampler's points between the samples are told from drawn
+// ones, and the clean-up and the fit see the stroke as drawn. Known truth: noisy strokes
+// (std::mt19937, the seeds below) subdivided 2-, 3- and 4-fold here, whose samples are
+// known; the drawn strokes themselves, a pointer walking a pixel per sample and an
+// evenly sampled clean curve, which are not subdivided.
+
+#include "fitting/subdivision.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "fitting/pipeline.h"
+#include "fitting/stroke.h"
+#include "tests/shared_data_sets.h"
+
+namespace la {
+namespace {
+
+// A spiral-like hooked stroke: a pen-down hook, then an arc of growing
+// radius, sampled about every 3 units with Gaussian noise 0.5 (seed `seed`).
+Stroke drawnStroke(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  Stroke s;
+  s.samples.push_back({Vec2(14.0, 6.0)});
+  s.samples.push_back({Vec2(7.0, 2.5)});
+  for (int i = 0; i <= 60; ++i) {
+    const double a = 0.05 * i, r = 60.0 + 10.0 * a;
+    s.samples.push_back({Vec2(r * std::sin(a), 60.0 - r * std::cos(a)) + Vec2(noise(rng), noise(rng))});
+  }
+  return s;
+}
+
+std::vector<Vec2> pointsOf(const Stroke& s) {
+  std::vector<Vec2> p;
+  for (const StrokeSample& q : s.samples) p.push_back(q.p);
+  return p;
+}
+
+TEST(SubdivisionSamples, ASubdividedStrokesSamplesAreFound) {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    const Stroke drawn = drawnStroke(seed);
+    EXPECT_TRUE(subdivisionSamples(pointsOf(drawn)).empty()) << "seed " << seed;
+    for (int k : {2, 3}) {
+      const std::vector<bool> sample = subdivisionSamples(pointsOf(test::subdivided(drawn, k)));
+      ASSERT_EQ(sample.size(), (drawn.samples.size() - 1) * k + 1) << "seed " << seed << ", " << k << "-fold";
+      for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_EQ(sample[i], i % k == 0) << "point " << i;
+    }
+    // (4-fold: every second point found first; those are 2-fold again)
+    const std::vector<bool> sample = subdivisionSamples(pointsOf(test::subdivided(drawn, 4)));
+    ASSERT_FALSE(sample.empty());
+    for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_EQ(sample[i], i % 2 == 0) << "point " << i;
+  }
+}
+
+TEST(SubdivisionSamples, MidpointsPrintedToFourDecimalsAreStillFound) {
+  Stroke printed = test::subdivided(drawnStroke(5), 2);
+  for (StrokeSample& q : printed.samples) q.p = (q.p * 1e4).array().round() / 1e4;
+  const std::vector<bool> sample = subdivisionSamples(pointsOf(printed));
+  ASSERT_FALSE(sample.empty());
+  for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_EQ(sample[i], i % 2 == 0) << "point " << i;
+}
+
+// Where every point or many points lie at their neighbours' midpoint by the way they were
+// drawn or sampled, no class stands out: a pixel stroke walked a pixel per sample (a
+// digital circle, and a digital line of slope 1/2), and a clean arc sampled evenly and
+// densely (its midpoints off by the sagitta only, under the rounding allowance).
+TEST(SubdivisionSamples, DrawnAndEvenlySampledStrokesAreNotSubdivided) {
+  std::vector<Vec2> circle, line, arc;
+  for (int i = 0; i < 400; ++i) {
+    const double a = 2.0 * M_PI * i / 400;
+    const Vec2 q(std::round(60.0 * std::cos(a)), std::round(60.0 * std::sin(a)));
+    if (circle.empty() || q != circle.back()) circle.push_back(q);
+  }
+  for (int x = 0; x < 120; ++x) line.emplace_back(x, std::floor(0.5 * x));
+  for (int i = 0; i <= 200; ++i) arc.emplace_back(1000.0 * std::cos(1e-3 * i), 1000.0 * std::sin(1e-3 * i));
+  EXPECT_TRUE(subdivisionSamples(circle).empty());
+  EXPECT_TRUE(subdivisionSamples(line).empty());
+  EXPECT_TRUE(subdivisionSamples(arc).empty());
+}
+
+// The clean-up of a subdivided stroke keeps exactly the drawn stroke's points (the hook
+// cut as there: its reach is counted in the samples' steps), and lists the resampler's
+// points as left out, on the kept polyline.
+TEST(SubdivisionCleanup, ASubdividedStrokeIsCleanedAsDrawn) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const Stroke drawn = drawnStroke(seed);
+    const CleanStroke as_drawn = cleanStroke(drawn);
+    ASSERT_GT(as_drawn.trimmed_start, 0u) << "seed " << seed;
+    for (int k : {2, 3, 4}) {
+      const Stroke sub = test::subdivided(drawn, k);
+      const CleanStroke c = cleanStroke(sub);
+      EXPECT_EQ(c.points, as_drawn.points) << "seed " << seed << ", " << k << "-fold";
+      EXPECT_EQ(c.corners.size(), as_drawn.corners.size());
+      EXPECT_EQ(c.removed_resampled, (drawn.samples.size() - 1) * (k - 1));
+      EXPECT_EQ(sub.samples.size(), c.points.size() + c.trimmed_start + c.trimmed_end + c.removed_overlap +
+                                        c.removed_invalid + c.removed_duplicates + c.removed_resampled);
+      EXPECT_NEAR(c.left_out_fraction, as_drawn.left_out_fraction, 1e-12);
+      for (const LeftOutPoint& l : c.left_out)
+        if (l.why == LeftOutReason::kResampled) EXPECT_NE(l.sample % k, 0u);
+    }
+  }
+}
+
+// Fitted, a subdivided stroke is the drawn one: the same tolerance, the same curve.
+TEST(SubdivisionFit, ASubdividedStrokeFitsAsDrawn) {
+  const Stroke drawn = drawnStroke(6);
+  const FitResult as_drawn = fitStroke(drawn);
+  for (int k : {2, 3}) {
+    const FitResult r = fitStroke(test::subdivided(drawn, k));
+    EXPECT_EQ(r.tolerance, as_drawn.tolerance) << k << "-fold";
+    ASSERT_EQ(r.curve.pieces.size(), as_drawn.curve.pieces.size()) << k << "-fold";
+    for (std::size_t i = 0; i < r.curve.pieces.size(); ++i) {
+      EXPECT_EQ(r.curve.pieces[i].segment.length(), as_drawn.curve.pieces[i].segment.length());
+      EXPECT_EQ(r.curve.pieces[i].segment.kappaStart(), as_drawn.curve.pieces[i].segment.kappaStart());
+    }
+    // (measured on the same points; over all of them, the resampler's too)
+    EXPECT_EQ(r.quality.max_dev, as_drawn.quality.max_dev);
+    EXPECT_GE(r.max_dev_all_points, as_drawn.max_dev_all_points);
+  }
+}
+
+}  // namespace
+}  // namespace la
