@@ -1,7 +1,5 @@
 #include "fitting/subdivision.h"
 
-#include <algorithm>
-
 namespace la {
 namespace {
 
@@ -23,10 +21,10 @@ std::vector<bool> subdivisionSamples(const std::vector<Vec2>& p) {
   if (n < 2 * kSubdividedClass + 2) return {};
   std::vector<bool> midpoint(n, false);
   constexpr double kOff = 4.0 * kMidpointRounding * kMidpointRounding;  // (|a + c - 2b| <= 2 rounding |c - a|, squared)
-  // (the resampler's classes allow at most one point in 20 of theirs next to a sample
-  // not at a midpoint: a drawn stroke, whose neighbours are seldom midpoints, is told
-  // after a few points)
-  const double most_pairs = (1.0 - kSubdividedShare) * static_cast<double>(n) + 2.0;
+  // (two neighbours both off a midpoint are rare in a subdivided stroke: each of the
+  // resampler's points off one, at most 1 in 20 of them, makes at most two such pairs; a
+  // drawn stroke, whose points are seldom midpoints, is told after a few)
+  const double most_pairs = 2.0 * (1.0 - kSubdividedShare) * static_cast<double>(n) + 2.0;
   std::size_t pairs = 0;  // (of neighbours neither at a midpoint)
   for (std::size_t i = 1; i + 1 < n; ++i) {
     const double span2 = (p[i + 1] - p[i - 1]).squaredNorm();

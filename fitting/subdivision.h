@@ -5,7 +5,7 @@
 // they hid the samples' noise (every fourth difference spans a midpoint: the shared
 // strokes subdivided 2-fold read their noise at about half, the fit followed the samples'
 // wobble, 6 curvature extrema at the median where the strokes have 2, 16 of 207 curves
-// off the tolerance, up to 2.2 s), shortened the clean-up's steps (a pen-down hook of two
+// off the tolerance, up to 1.7 s), shortened the clean-up's steps (a pen-down hook of two
 // samples went unseen), and pulled the curve onto the chords. The clean-up
 // (fitting/stroke.h) leaves them out, as it does duplicates: the stroke is fitted as
 // drawn, and the curve is measured against every point.
