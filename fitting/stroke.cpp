@@ -159,33 +159,37 @@ struct Points {
     p.resize(k);
     src.resize(k);
   }
+  /// Keeps the points `keep` flags; returns how many went.
+  std::size_t keepOnly(const std::vector<bool>& keep, LeftOutReason why) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!keep[i]) {
+        left_out->push_back({src[i], why});
+        continue;
+      }
+      p[kept] = p[i];
+      src[kept++] = src[i];
+    }
+    const std::size_t gone = p.size() - kept;
+    p.resize(kept);
+    src.resize(kept);
+    return gone;
+  }
 };
 
 // The fraction of the drawn length (the finite samples' polyline) spanned by the steps
-// that touch a left-out sample (not a duplicate: it lies on a kept point; a resampler's
-// point lies on the step between two samples, and is out where one of them is).
+// that touch a left-out sample (not a duplicate: it lies on a kept point). A resampler's
+// points lie on the step between the samples either side, which is walked in one.
 double leftOutFraction(const Stroke& raw, const std::vector<LeftOutPoint>& left_out) {
-  const std::size_t n = raw.samples.size();
-  std::vector<bool> out(n, false), resampled(n, false);
+  std::vector<bool> out(raw.samples.size(), false), resampled(raw.samples.size(), false);
   for (const LeftOutPoint& l : left_out) {
     out[l.sample] = !liesOnKeptPoints(l.why);
     resampled[l.sample] = l.why == LeftOutReason::kResampled;
   }
-  // (each run of a resampler's points takes the samples' either side)
-  for (std::size_t i = 0; i < n;) {
-    if (!resampled[i]) {
-      ++i;
-      continue;
-    }
-    std::size_t end = i;
-    while (end < n && resampled[end]) ++end;
-    const bool either = (i > 0 && out[i - 1]) || (end < n && out[end]);
-    for (; i < end; ++i) out[i] = either;
-  }
   double drawn = 0.0, dropped = 0.0;
   std::size_t prev = raw.samples.size();
   for (std::size_t i = 0; i < raw.samples.size(); ++i) {
-    if (!allFinite(raw.samples[i].p)) continue;
+    if (!allFinite(raw.samples[i].p) || resampled[i]) continue;
     if (prev < raw.samples.size()) {
       const double step = (raw.samples[i].p - raw.samples[prev].p).norm();
       drawn += step;
@@ -743,21 +747,8 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double
   // samples do not (fitting/subdivision.h): left out like duplicates (a 4-fold
   // subdivision in two rounds). (Not on a straight stroke: evenly sampled, its points
   // are all midpoints, and its line is fitted to them as they are.)
-  for (std::vector<bool> sample; !(sample = subdivisionSamples(pts.p)).empty();) {
-    std::vector<Vec2> p;
-    std::vector<std::size_t> src;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      if (sample[i]) {
-        p.push_back(pts.p[i]);
-        src.push_back(pts.src[i]);
-      } else {
-        ++result.removed_resampled;
-        result.left_out.push_back({pts.src[i], LeftOutReason::kResampled});
-      }
-    }
-    pts.p = std::move(p);
-    pts.src = std::move(src);
-  }
+  for (std::vector<bool> sample; !(sample = subdivisionSamples(pts.p)).empty();)
+    result.removed_resampled += pts.keepOnly(sample, LeftOutReason::kResampled);
 
   // 2. (A long first or last step is a segment of the stroke, drawn or not: nothing is
   // dropped for its length alone. Hooks, which turn sharply, are step 4.)

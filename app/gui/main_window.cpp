@@ -790,12 +790,12 @@ void MainWindow::documentChanged() {
   // (what the clean-up left out, said where it is more than duplicates and a resampler's
   // points, which lie on the points kept)
   const auto& left_out = last->cleaned.left_out;
-  const auto duplicates = std::count_if(left_out.begin(), left_out.end(),
-                                        [](const LeftOutPoint& l) { return liesOnKeptPoints(l.why); });
-  const QString left = static_cast<std::size_t>(duplicates) == left_out.size()
+  const auto on_kept = std::count_if(left_out.begin(), left_out.end(),
+                                     [](const LeftOutPoint& l) { return liesOnKeptPoints(l.why); });
+  const QString left = static_cast<std::size_t>(on_kept) == left_out.size()
                            ? QString()
                            : QString(" · %1 samples left out (%2% of the length)")
-                                 .arg(left_out.size() - static_cast<std::size_t>(duplicates))
+                                 .arg(left_out.size() - static_cast<std::size_t>(on_kept))
                                  .arg(100.0 * last->cleaned.left_out_fraction, 0, 'f', 0);
   m_status->setText(QString("segments %1 · max deviation %2 (%3% of size) · g2 gap %4 · extrema %5 · fit %6 ms%7%8")
                         .arg(q.segments)
