@@ -119,25 +119,29 @@ double noiseSigma(const std::vector<Vec2>& p, const std::vector<std::size_t>& co
   return (zigzag ? (q75 - q25) / 1.349 : by_median) / std::sqrt(70.0);
 }
 
-// The step of the grid the points lie on along one coordinate (every value an integer
-// number of steps from the smallest: pixels, possibly shifted and scaled, as Omniglot's
-// canvas units are), or 0 if they do not. The step is the smallest change between
+constexpr double kGridRounding = 1e-3;  // in steps (the files print 6 decimals)
+constexpr double kMostGridCells = 1e6;  // across the points' range, along one axis
+
+// The grid the points lie on along one coordinate: every value an integer number of
+// steps from the smallest (pixels, possibly shifted and scaled, as Omniglot's canvas
+// units are); the step 0 if they do not. The step is the smallest change between
 // consecutive points.
-double gridStep(const std::vector<Vec2>& p, int axis) {
-  constexpr double kRounding = 1e-3;  // in steps (the files print 6 decimals)
+std::pair<double, double> gridAxis(const std::vector<Vec2>& p, int axis) {
   double step = INFINITY, lo = p.front()[axis], hi = lo;
   for (std::size_t i = 1; i < p.size(); ++i) {
     const double d = std::abs(p[i][axis] - p[i - 1][axis]);
     if (d > 0.0) step = std::min(step, d);
     lo = std::min(lo, p[i][axis]), hi = std::max(hi, p[i][axis]);
   }
-  if (!std::isfinite(step)) return 0.0;
+  // (a change of a few ulps between two points is rounding, not a pixel: on a grid that
+  // fine every double lies, and a resampled stroke passed for a pixel one)
+  if (!std::isfinite(step) || (hi - lo) / step > kMostGridCells) return {lo, 0.0};
   step = (hi - lo) / std::round((hi - lo) / step);  // the printed step's rounding spread over the range
   for (const Vec2& q : p) {
     const double k = (q[axis] - lo) / step;
-    if (std::abs(k - std::round(k)) > kRounding) return 0.0;
+    if (std::abs(k - std::round(k)) > kGridRounding) return {lo, 0.0};
   }
-  return step;
+  return {lo, step};
 }
 
 // The noise that neighbouring samples share, from the fourth differences of every second
@@ -169,9 +173,9 @@ double sharedNoiseAbove(double least, const std::vector<Vec2>& p, const std::vec
 // lags 2 and 3 serve only where together they read the bending apart from the noise
 // (sharedNoiseAbove).
 Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corners) {
-  const double hx = gridStep(p, 0), hy = gridStep(p, 1);
-  const bool on_grid = hx > 0.0 && hy > 0.0;
-  const double h = std::max(hx, hy);
+  const std::optional<PixelGrid> grid = pixelGridOf(p);
+  const bool on_grid = grid.has_value();
+  const double h = on_grid ? grid->step.maxCoeff() : 0.0;
   const bool stairs = on_grid && medianStep(p) <= kStairSteps * h;
   auto sigmaOf = [&](const std::vector<std::size_t>& left_out) {
     return stairs ? std::max(noiseSigma(p, left_out), noiseSigma(p, left_out, 2)) : noiseSigma(p, left_out);
@@ -194,6 +198,22 @@ Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corner
   n.floor = std::max(floorSigmas(p.size()) * sigma, on_grid ? kQuantizationFloor * h : 0.0);
   n.on_grid = on_grid;
   return n;
+}
+
+bool PixelGrid::holds(const Vec2& q) const {
+  for (int axis : {0, 1}) {
+    const double k = (q[axis] - origin[axis]) / step[axis];
+    if (std::abs(k - std::round(k)) > kGridRounding) return false;
+  }
+  return true;
+}
+
+std::optional<PixelGrid> pixelGridOf(const std::vector<Vec2>& p) {
+  if (p.empty()) return std::nullopt;
+  const auto [x0, hx] = gridAxis(p, 0);
+  const auto [y0, hy] = gridAxis(p, 1);
+  if (!(hx > 0.0 && hy > 0.0)) return std::nullopt;
+  return PixelGrid{Vec2(x0, y0), Vec2(hx, hy)};
 }
 
 std::vector<Vec2> withoutStairs(const std::vector<Vec2>& p, bool closed) {

@@ -4,6 +4,7 @@
 // bending), also of every second and third sample where neighbours share it (a device's
 // smoothing), and for points on a pixel grid the quantization (stroke_noise.cpp says how).
 
+#include <optional>
 #include <vector>
 
 #include "core/geometry.h"
@@ -21,6 +22,17 @@ struct Noise {
 /// few samples long: most differences span a vertex), they are left out, so the zigzag
 /// is not taken for noise of its own size.
 Noise noiseOf(const std::vector<Vec2>& points, const std::vector<std::size_t>& corners = {});
+
+/// A pixel grid: the points origin + (i, j) * step, i and j integers.
+struct PixelGrid {
+  Vec2 origin, step;
+  bool holds(const Vec2& point) const;  // (to a thousandth of a step: printed files round)
+};
+
+/// The grid the points lie on: along both axes every value an integer number of one step
+/// from the smallest (pixels, possibly shifted and scaled, as Omniglot's canvas units
+/// are), that step the smallest change between neighbours. Nullopt where they do not.
+std::optional<PixelGrid> pixelGridOf(const std::vector<Vec2>& points);
 
 /// The points with a binomial filter (1 4 6 4 1)/16 over five neighbours; an open
 /// part's ends stay. On a pixel grid it turns a one-pixel stair into a slope.
