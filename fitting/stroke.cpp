@@ -747,7 +747,7 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double
   // samples do not (fitting/subdivision.h): left out like duplicates (a 4-fold
   // subdivision in two rounds). (Not on a straight stroke: evenly sampled, its points
   // are all midpoints, and its line is fitted to them as they are.)
-  for (std::vector<bool> sample; !(sample = subdivisionSamples(pts.p)).empty();)
+  for (std::vector<bool> sample; !(sample = resamplerSamples(pts.p)).empty();)
     result.removed_resampled += pts.keepOnly(sample, LeftOutReason::kResampled);
 
   // 2. (A long first or last step is a segment of the stroke, drawn or not: nothing is

@@ -1,5 +1,7 @@
 #include "fitting/subdivision.h"
 
+#include "fitting/stroke_noise.h"
+
 namespace la {
 namespace {
 
@@ -13,6 +15,18 @@ constexpr double kMidpointRounding = 1e-3;
 constexpr double kSubdividedShare = 0.95;
 // Each class holds at least this many points (fewer tell nothing).
 constexpr std::size_t kSubdividedClass = 8;
+// Filled steps: at least this share of the points are the resampler's.
+constexpr double kFilledShare = 0.5;
+// ... and on a pixel grid, the samples' grid is at least this many times coarser than
+// the points' (a straight pixel line with a step skipped now and then: twice).
+constexpr double kCoarserGrid = 3.0;
+
+// |a + c - 2b| <= 2 r |c - a|: b is within r of its neighbours' distance from their
+// midpoint (squared, so no square root).
+bool nearMidpoint(const Vec2& a, const Vec2& b, const Vec2& c, double r) {
+  const double span2 = (c - a).squaredNorm();
+  return span2 > 0.0 && (a + c - 2.0 * b).squaredNorm() <= 4.0 * r * r * span2;
+}
 
 }  // namespace
 
@@ -20,15 +34,13 @@ std::vector<bool> subdivisionSamples(const std::vector<Vec2>& p) {
   const std::size_t n = p.size();
   if (n < 2 * kSubdividedClass + 2) return {};
   std::vector<bool> midpoint(n, false);
-  constexpr double kOff = 4.0 * kMidpointRounding * kMidpointRounding;  // (|a + c - 2b| <= 2 rounding |c - a|, squared)
   // (two neighbours both off a midpoint are rare in a subdivided stroke: each of the
   // resampler's points off one, at most 1 in 20 of them, makes at most two such pairs; a
   // drawn stroke, whose points are seldom midpoints, is told after a few)
   const double most_pairs = 2.0 * (1.0 - kSubdividedShare) * static_cast<double>(n) + 2.0;
   std::size_t pairs = 0;  // (of neighbours neither at a midpoint)
   for (std::size_t i = 1; i + 1 < n; ++i) {
-    const double span2 = (p[i + 1] - p[i - 1]).squaredNorm();
-    midpoint[i] = span2 > 0.0 && (p[i - 1] + p[i + 1] - 2.0 * p[i]).squaredNorm() <= kOff * span2;
+    midpoint[i] = nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
     if (i > 1 && !midpoint[i] && !midpoint[i - 1] && static_cast<double>(++pairs) > most_pairs) return {};
   }
   for (std::size_t k = 2; k <= 3; ++k) {
@@ -46,6 +58,74 @@ std::vector<bool> subdivisionSamples(const std::vector<Vec2>& p) {
     return sample;
   }
   return {};
+}
+
+std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) {
+  const std::size_t n = p.size();
+  if (n < 2 * kSubdividedClass + 2) return {};
+  std::vector<bool> sample(n, true);
+  for (std::size_t i = 1; i + 1 < n; ++i) sample[i] = !nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
+  // The runs of points at midpoints, [first, end). Each lies on the chord between the
+  // samples around it, to the same rounding: a gently curved outline's points are each
+  // nearly a midpoint, but a run of them bends away from its chord as the square of its
+  // length, and stays. A run across a sample that barely turns the stroke (its
+  // neighbours are midpoints too) is two straight runs either side of its point furthest
+  // from the chord, which is a sample.
+  auto farthest = [&](std::size_t first, std::size_t end) {  // (from the chord p[first - 1] p[end]; and which)
+    const Vec2 a = p[first - 1], along = (p[end] - a).normalized();
+    std::pair<double, std::size_t> out{0.0, first};
+    for (std::size_t k = first; k < end; ++k) out = std::max(out, {std::abs(cross(along, p[k] - a)), k});
+    return out;
+  };
+  auto straight = [&](std::size_t first, std::size_t end) {
+    return first == end || farthest(first, end).first <= kMidpointRounding * (p[end] - p[first - 1]).norm();
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  for (std::size_t first = 1, end; first + 1 < n; first = std::max(end, first + 1)) {
+    for (end = first; !sample[end];) ++end;
+    if (end == first) continue;
+    if (straight(first, end)) {
+      runs.emplace_back(first, end);
+      continue;
+    }
+    const std::size_t turn = farthest(first, end).second;
+    if (straight(first, turn) && straight(turn + 1, end)) {
+      sample[turn] = true;
+      if (first < turn) runs.emplace_back(first, turn);
+      if (turn + 1 < end) runs.emplace_back(turn + 1, end);
+      continue;
+    }
+    std::fill(sample.begin() + static_cast<std::ptrdiff_t>(first), sample.begin() + static_cast<std::ptrdiff_t>(end), true);
+  }
+  // On a pixel grid, a pointer walking along a row or column puts its samples at
+  // midpoints too. A stroke whose points all lie on one grid is as drawn, unless the
+  // other samples lie on a grid several times coarser (a pixel stroke filled at a
+  // fraction of a pixel); a run wholly on the other samples' grid is drawn.
+  std::vector<Vec2> kept;
+  for (std::size_t i = 0; i < n; ++i)
+    if (sample[i]) kept.push_back(p[i]);
+  const std::optional<PixelGrid> grid = pixelGridOf(kept);
+  if (const std::optional<PixelGrid> all = pixelGridOf(p))
+    if (!grid || (grid->step.array() < kCoarserGrid * all->step.array()).any()) return {};
+  std::size_t filled = 0;
+  for (const auto& [first, end] : runs) {
+    bool drawn = grid.has_value();
+    for (std::size_t k = first; k < end && drawn; ++k) drawn = grid->holds(p[k]);
+    if (drawn) std::fill(sample.begin() + static_cast<std::ptrdiff_t>(first), sample.begin() + static_cast<std::ptrdiff_t>(end), true);
+    else filled += end - first;
+  }
+  if (static_cast<double>(filled) < kFilledShare * static_cast<double>(n - 2) || n - filled < kSubdividedClass) return {};
+  return sample;
+}
+
+std::vector<bool> resamplerSamples(const std::vector<Vec2>& p) {
+  std::vector<bool> subdivided = subdivisionSamples(p);
+  bool exact = !subdivided.empty();  // (every point it leaves out at a midpoint)
+  for (std::size_t i = 1; exact && i + 1 < p.size(); ++i)
+    exact = subdivided[i] || nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
+  if (exact) return subdivided;
+  if (std::vector<bool> filled = filledStepSamples(p); !filled.empty()) return filled;
+  return subdivided;
 }
 
 }  // namespace la
