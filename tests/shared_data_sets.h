@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -89,15 +90,71 @@ inline Stroke subdivided(const Stroke& stroke, int k) {
   return out;
 }
 
+/// The stroke with each step between two samples filled with points `step` apart or
+/// less, evenly (their times too), as an importer flattening a polyline does; the
+/// samples stay.
+inline Stroke filledSteps(const Stroke& stroke, double step) {
+  const std::vector<StrokeSample>& in = stroke.samples;
+  Stroke out = stroke;
+  if (in.empty()) return out;
+  out.samples.clear();
+  for (std::size_t i = 0; i + 1 < in.size(); ++i) {
+    out.samples.push_back(in[i]);
+    const int parts = std::max(1, static_cast<int>(std::ceil((in[i + 1].p - in[i].p).norm() / step)));
+    for (int j = 1; j < parts; ++j) {
+      StrokeSample s = in[i];
+      const double f = static_cast<double>(j) / parts;
+      s.p = (1.0 - f) * in[i].p + f * in[i + 1].p;
+      s.t = (1.0 - f) * in[i].t + f * in[i + 1].t;
+      out.samples.push_back(s);
+    }
+  }
+  out.samples.push_back(in.back());
+  return out;
+}
+
+/// The stroke resampled by arc length: points `step` apart along its polyline from its
+/// first sample, and its last (their times interpolated); the samples between are gone.
+inline Stroke resampledEvenly(const Stroke& stroke, double step) {
+  const std::vector<StrokeSample>& in = stroke.samples;
+  Stroke out = stroke;
+  if (in.size() < 2) return out;
+  out.samples = {in.front()};
+  double to_next = step;  // (along the polyline, from the start of the current step)
+  for (std::size_t i = 0; i + 1 < in.size(); ++i) {
+    const double length = (in[i + 1].p - in[i].p).norm();
+    for (; to_next < length; to_next += step) {
+      StrokeSample s = in[i];
+      const double f = to_next / length;
+      s.p = (1.0 - f) * in[i].p + f * in[i + 1].p;
+      s.t = (1.0 - f) * in[i].t + f * in[i + 1].t;
+      out.samples.push_back(s);
+    }
+    to_next -= length;
+  }
+  out.samples.push_back(in.back());
+  return out;
+}
+
 /// How a device or an importer may have handed the samples over (data_benchmark
 /// --handed-over): as drawn; each point averaged with its neighbours by [1 2 1] / 4, the
 /// ends kept (a tablet driver's smoothing: the noise then shared by neighbours); or with
-/// the midpoint of every step filled in (an importer's resampling). The same strokes:
-/// the fit should read the same noise and draw about the same curves.
-enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints };
+/// the midpoint of every step filled in (an importer's resampling); with every step
+/// filled at a 300th of the stroke's diagonal (an importer flattening a polyline, about
+/// a pixel at a drawing's size), or resampled by arc length at that spacing without the
+/// samples. The same strokes: the fit should read the same noise and draw about the same
+/// curves.
+enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints, kFilled, kResampled };
 
 inline Stroke handedOver(const Stroke& stroke, HandedOver how) {
   if (how == HandedOver::kMidpoints) return subdivided(stroke, 2);
+  if (how == HandedOver::kFilled || how == HandedOver::kResampled) {
+    std::vector<Vec2> points;
+    for (const StrokeSample& s : stroke.samples) points.push_back(s.p);
+    const double step = boundingBoxDiagonal(points) / 300.0;
+    if (!(step > 0.0)) return stroke;
+    return how == HandedOver::kFilled ? filledSteps(stroke, step) : resampledEvenly(stroke, step);
+  }
   Stroke out = stroke;
   if (how == HandedOver::kSmoothed) {
     const std::vector<StrokeSample>& in = stroke.samples;

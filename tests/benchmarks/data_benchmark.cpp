@@ -44,9 +44,11 @@
 //                  the same figures; a stroke whose figures differ is listed below the
 //                  table (with a time budget they may: where it runs out depends on the load).
 // --handed-over=HOW  every stroke's samples as a device or an importer may hand them over
-//                  (test::handedOver): `smoothed` by a tablet driver's [1 2 1] / 4 filter, or
-//                  with the `midpoints` of its steps filled in; the same strokes, so the
-//                  figures should stay near those of the strokes as drawn
+//                  (test::handedOver): `smoothed` by a tablet driver's [1 2 1] / 4 filter,
+//                  with the `midpoints` of its steps filled in, with its steps `filled`
+//                  evenly a 300th of its diagonal apart, or `resampled` by arc length at
+//                  that spacing; the same strokes, so the figures should stay near those of
+//                  the strokes as drawn
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // --rows=FILE      also every stroke's figures, one CSV row each (data set, stroke, time ms,
 //                  segments, extrema_dense, max_dev/tol, min_radius/tol), to compare two
@@ -226,6 +228,8 @@ void printTable() {
               g_settings.data.lexically_normal().string().c_str(),
               how == test::HandedOver::kSmoothed    ? " (smoothed [1 2 1] / 4)"
               : how == test::HandedOver::kMidpoints ? " (midpoints filled in)"
+              : how == test::HandedOver::kFilled    ? " (steps filled at diagonal / 300)"
+              : how == test::HandedOver::kResampled ? " (resampled by arc length at diagonal / 300)"
                                                     : "",
               o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)", cap, o.time_budget_ms);
   std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s | %-16s%s\n", "", "", "", "", "time ms", "segments",
@@ -304,6 +308,10 @@ bool takeFlags(int& argc, char** argv) {
       g_settings.handed_over = test::HandedOver::kSmoothed;
     } else if (arg == "--handed-over=midpoints") {
       g_settings.handed_over = test::HandedOver::kMidpoints;
+    } else if (arg == "--handed-over=filled") {
+      g_settings.handed_over = test::HandedOver::kFilled;
+    } else if (arg == "--handed-over=resampled") {
+      g_settings.handed_over = test::HandedOver::kResampled;
     } else if (arg.starts_with("--handed-over=")) {
       return false;
     } else if (arg == "--paper-only") {
