@@ -64,7 +64,10 @@ std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) {
   const std::size_t n = p.size();
   if (n < 2 * kSubdividedClass + 2) return {};
   std::vector<bool> sample(n, true);
-  for (std::size_t i = 1; i + 1 < n; ++i) sample[i] = !nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
+  std::size_t at_midpoints = 0;
+  for (std::size_t i = 1; i + 1 < n; ++i) at_midpoints += !(sample[i] = !nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding));
+  const double least = kFilledShare * static_cast<double>(n - 2);
+  if (static_cast<double>(at_midpoints) < least) return {};  // (a drawn stroke: told here, in one pass)
   // The runs of points at midpoints, [first, end). Each lies on the chord between the
   // samples around it, to the same rounding: a gently curved outline's points are each
   // nearly a midpoint, but a run of them bends away from its chord as the square of its
@@ -114,7 +117,7 @@ std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) {
     if (drawn) std::fill(sample.begin() + static_cast<std::ptrdiff_t>(first), sample.begin() + static_cast<std::ptrdiff_t>(end), true);
     else filled += end - first;
   }
-  if (static_cast<double>(filled) < kFilledShare * static_cast<double>(n - 2) || n - filled < kSubdividedClass) return {};
+  if (static_cast<double>(filled) < least || n - filled < kSubdividedClass) return {};
   return sample;
 }
 
