@@ -69,48 +69,40 @@ inline Stroke variantOf(const Stroke& stroke, int k) {
   return out;
 }
 
-/// The stroke subdivided k-fold, as a resampler does: k - 1 points evenly on each step
-/// between two samples (their times too; NaN stays NaN).
-inline Stroke subdivided(const Stroke& stroke, int k) {
+/// The sample at fraction f of the step from a to b (its time too; NaN stays NaN).
+inline StrokeSample between(const StrokeSample& a, const StrokeSample& b, double f) {
+  StrokeSample s = a;
+  s.p = (1.0 - f) * a.p + f * b.p;
+  s.t = (1.0 - f) * a.t + f * b.t;
+  return s;
+}
+
+/// The stroke with each step between two samples cut into `parts(its length)` equal
+/// parts, the samples kept, as a resampler does.
+template <typename Parts>
+Stroke withStepsCut(const Stroke& stroke, Parts parts) {
   const std::vector<StrokeSample>& in = stroke.samples;
   Stroke out = stroke;
   if (in.empty()) return out;
   out.samples.clear();
   for (std::size_t i = 0; i + 1 < in.size(); ++i) {
     out.samples.push_back(in[i]);
-    for (int j = 1; j < k; ++j) {
-      StrokeSample s = in[i];
-      const double f = static_cast<double>(j) / k;
-      s.p = (1.0 - f) * in[i].p + f * in[i + 1].p;
-      s.t = (1.0 - f) * in[i].t + f * in[i + 1].t;
-      out.samples.push_back(s);
-    }
+    const int n = parts((in[i + 1].p - in[i].p).norm());
+    for (int j = 1; j < n; ++j) out.samples.push_back(between(in[i], in[i + 1], static_cast<double>(j) / n));
   }
   out.samples.push_back(in.back());
   return out;
 }
 
+/// The stroke subdivided k-fold: k - 1 points evenly on each step between two samples.
+inline Stroke subdivided(const Stroke& stroke, int k) {
+  return withStepsCut(stroke, [k](double) { return k; });
+}
+
 /// The stroke with each step between two samples filled with points `step` apart or
-/// less, evenly (their times too), as an importer flattening a polyline does; the
-/// samples stay.
+/// less, evenly, as an importer flattening a polyline does; the samples stay.
 inline Stroke filledSteps(const Stroke& stroke, double step) {
-  const std::vector<StrokeSample>& in = stroke.samples;
-  Stroke out = stroke;
-  if (in.empty()) return out;
-  out.samples.clear();
-  for (std::size_t i = 0; i + 1 < in.size(); ++i) {
-    out.samples.push_back(in[i]);
-    const int parts = std::max(1, static_cast<int>(std::ceil((in[i + 1].p - in[i].p).norm() / step)));
-    for (int j = 1; j < parts; ++j) {
-      StrokeSample s = in[i];
-      const double f = static_cast<double>(j) / parts;
-      s.p = (1.0 - f) * in[i].p + f * in[i + 1].p;
-      s.t = (1.0 - f) * in[i].t + f * in[i + 1].t;
-      out.samples.push_back(s);
-    }
-  }
-  out.samples.push_back(in.back());
-  return out;
+  return withStepsCut(stroke, [step](double length) { return std::max(1, static_cast<int>(std::ceil(length / step))); });
 }
 
 /// The stroke resampled by arc length: points `step` apart along its polyline from its
@@ -123,13 +115,7 @@ inline Stroke resampledEvenly(const Stroke& stroke, double step) {
   double to_next = step;  // (along the polyline, from the start of the current step)
   for (std::size_t i = 0; i + 1 < in.size(); ++i) {
     const double length = (in[i + 1].p - in[i].p).norm();
-    for (; to_next < length; to_next += step) {
-      StrokeSample s = in[i];
-      const double f = to_next / length;
-      s.p = (1.0 - f) * in[i].p + f * in[i + 1].p;
-      s.t = (1.0 - f) * in[i].t + f * in[i + 1].t;
-      out.samples.push_back(s);
-    }
+    for (; to_next < length; to_next += step) out.samples.push_back(between(in[i], in[i + 1], to_next / length));
     to_next -= length;
   }
   out.samples.push_back(in.back());
