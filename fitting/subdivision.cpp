@@ -1,5 +1,7 @@
 #include "fitting/subdivision.h"
 
+#include <algorithm>
+
 #include "fitting/stroke_noise.h"
 
 namespace la {
@@ -28,21 +30,24 @@ bool nearMidpoint(const Vec2& a, const Vec2& b, const Vec2& c, double r) {
   return span2 > 0.0 && (a + c - 2.0 * b).squaredNorm() <= 4.0 * r * r * span2;
 }
 
-}  // namespace
+// Per point, whether it is at the midpoint of its neighbours (the ends are not): both
+// detectors read these, computed once per clean-up round.
+std::vector<bool> midpointsOf(const std::vector<Vec2>& p) {
+  std::vector<bool> midpoint(p.size(), false);
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) midpoint[i] = nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
+  return midpoint;
+}
 
-std::vector<bool> subdivisionSamples(const std::vector<Vec2>& p) {
-  const std::size_t n = p.size();
+std::vector<bool> subdivisionOf(const std::vector<bool>& midpoint) {
+  const std::size_t n = midpoint.size();
   if (n < 2 * kSubdividedClass + 2) return {};
-  std::vector<bool> midpoint(n, false);
   // (two neighbours both off a midpoint are rare in a subdivided stroke: each of the
   // resampler's points off one, at most 1 in 20 of them, makes at most two such pairs; a
   // drawn stroke, whose points are seldom midpoints, is told after a few)
   const double most_pairs = 2.0 * (1.0 - kSubdividedShare) * static_cast<double>(n) + 2.0;
   std::size_t pairs = 0;  // (of neighbours neither at a midpoint)
-  for (std::size_t i = 1; i + 1 < n; ++i) {
-    midpoint[i] = nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
-    if (i > 1 && !midpoint[i] && !midpoint[i - 1] && static_cast<double>(++pairs) > most_pairs) return {};
-  }
+  for (std::size_t i = 2; i + 1 < n; ++i)
+    if (!midpoint[i] && !midpoint[i - 1] && static_cast<double>(++pairs) > most_pairs) return {};
   for (std::size_t k = 2; k <= 3; ++k) {
     std::vector<std::size_t> count(k, 0), at_midpoints(k, 0);
     for (std::size_t i = 1; i + 1 < n; ++i) ++count[i % k], at_midpoints[i % k] += midpoint[i];
@@ -60,14 +65,16 @@ std::vector<bool> subdivisionSamples(const std::vector<Vec2>& p) {
   return {};
 }
 
-std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) {
+std::vector<bool> filledStepsOf(const std::vector<Vec2>& p, const std::vector<bool>& midpoint) {
   const std::size_t n = p.size();
   if (n < 2 * kSubdividedClass + 2) return {};
-  std::vector<bool> sample(n, true);
-  std::size_t at_midpoints = 0;
-  for (std::size_t i = 1; i + 1 < n; ++i) at_midpoints += !(sample[i] = !nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding));
   const double least = kFilledShare * static_cast<double>(n - 2);
-  if (static_cast<double>(at_midpoints) < least) return {};  // (a drawn stroke: told here, in one pass)
+  if (static_cast<double>(std::count(midpoint.begin(), midpoint.end(), true)) < least) return {};  // (a drawn stroke)
+  std::vector<bool> sample(n);
+  for (std::size_t i = 0; i < n; ++i) sample[i] = !midpoint[i];
+  auto keepRun = [&](std::size_t first, std::size_t end) {
+    std::fill(sample.begin() + static_cast<std::ptrdiff_t>(first), sample.begin() + static_cast<std::ptrdiff_t>(end), true);
+  };
   // The runs of points at midpoints, [first, end). Each lies on the chord between the
   // samples around it, to the same rounding: a gently curved outline's points are each
   // nearly a midpoint, but a run of them bends away from its chord as the square of its
@@ -98,7 +105,7 @@ std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) {
       if (turn + 1 < end) runs.emplace_back(turn + 1, end);
       continue;
     }
-    std::fill(sample.begin() + static_cast<std::ptrdiff_t>(first), sample.begin() + static_cast<std::ptrdiff_t>(end), true);
+    keepRun(first, end);
   }
   // On a pixel grid, a pointer walking along a row or column puts its samples at
   // midpoints too. A stroke whose points all lie on one grid is as drawn, unless the
@@ -114,20 +121,26 @@ std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) {
   for (const auto& [first, end] : runs) {
     bool drawn = grid.has_value();
     for (std::size_t k = first; k < end && drawn; ++k) drawn = grid->holds(p[k]);
-    if (drawn) std::fill(sample.begin() + static_cast<std::ptrdiff_t>(first), sample.begin() + static_cast<std::ptrdiff_t>(end), true);
+    if (drawn) keepRun(first, end);
     else filled += end - first;
   }
   if (static_cast<double>(filled) < least || n - filled < kSubdividedClass) return {};
   return sample;
 }
 
+}  // namespace
+
+std::vector<bool> subdivisionSamples(const std::vector<Vec2>& p) { return subdivisionOf(midpointsOf(p)); }
+
+std::vector<bool> filledStepSamples(const std::vector<Vec2>& p) { return filledStepsOf(p, midpointsOf(p)); }
+
 std::vector<bool> resamplerSamples(const std::vector<Vec2>& p) {
-  std::vector<bool> subdivided = subdivisionSamples(p);
+  const std::vector<bool> midpoint = midpointsOf(p);
+  std::vector<bool> subdivided = subdivisionOf(midpoint);
   bool exact = !subdivided.empty();  // (every point it leaves out at a midpoint)
-  for (std::size_t i = 1; exact && i + 1 < p.size(); ++i)
-    exact = subdivided[i] || nearMidpoint(p[i - 1], p[i], p[i + 1], kMidpointRounding);
+  for (std::size_t i = 1; exact && i + 1 < p.size(); ++i) exact = subdivided[i] || midpoint[i];
   if (exact) return subdivided;
-  if (std::vector<bool> filled = filledStepSamples(p); !filled.empty()) return filled;
+  if (std::vector<bool> filled = filledStepsOf(p, midpoint); !filled.empty()) return filled;
   return subdivided;
 }
 
