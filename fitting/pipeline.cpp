@@ -207,7 +207,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
-  std::size_t polish_room = options.max_polish_segments;
+  std::size_t polish_room = options.max_polish_segments, repair_room = options.max_polish_segments;
   // The larger of a part's chain's deviation from its points and its stray (the curve
   // going where the stroke did not: a loop between two points), each measured once.
   auto worstOf = [&](PartFit& f, const Part& part) {
@@ -276,8 +276,23 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (!r.over_polish_limit)
         r.warnings.push_back("stage 7 left parts with the chain of stages 1-6: the stroke's chains have more than " +
                              std::to_string(options.max_polish_segments) +
-                             " segments in all (FitOptions::max_polish_segments; lafit --max-polish-segments)");
+                             " segments in all (FitOptions::max_polish_segments; lafit --max-polish-segments); "
+                             "where that chain has gaps, stage 7 fits it without choosing its segments");
       r.over_polish_limit = true;
+      // The chain left for stage 7 to complete has gaps where no LA segment fits a
+      // piece (straight lines there: kinks where the user drew none). Stage 7's fit of it
+      // without its choice of segments (a fraction of the selection's work) makes it G2,
+      // in a room of its own as large; past that room, the paper's stages 2-6 cut those
+      // pieces, which closes some gaps. (Slow mouse strokes walked pixel by pixel, whose
+      // many wiggles fill the room: 26 of 610 came out with kinks of up to 1.1 rad.)
+      if (!fit.g2.usable() && fit.segments.size() <= repair_room) {
+        repair_room -= fit.segments.size();
+        const auto tp = Clock::now();
+        polishPart(fit, part, context, false);
+        r.timings.polish_ms += msSince(tp);
+      } else if (!fit.g2.usable()) {
+        if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) fit = std::move(paper);
+      }
       return fit;
     }
     if (polishing) polish_room -= fit.segments.size();

@@ -113,7 +113,9 @@ struct FitOptions {
   /// the clean-up and stages 1-6 grow as n log n with the samples. Stage 7 fits a part's
   /// whole chain at once, at a cost growing with the cube of its segments: it runs on the
   /// parts in turn while their stage-6 chains add up to at most max_polish_segments; the
-  /// others keep the stage-6 chain, with a warning (a scribble of a thousand turns). The
+  /// others keep the stage-6 chain, with a warning (a scribble of a thousand turns); where
+  /// that chain has gaps (pieces no LA segment fits), stage 7 fits it without choosing its
+  /// segments, while those add up to at most max_polish_segments again. The
   /// shared data's strokes have at most 27. lafit --max-points, --max-polish-segments.
   std::size_t max_points = 1'000'000;
   std::size_t max_polish_segments = 40;

@@ -46,7 +46,9 @@ stage 7 left out, with a message naming the flag):
   --max-polish-segments N
                        segments in all (of the stages 1-6 chains) that stage 7 fits in
                        one stroke (default 40; it fits a part's whole chain at once, at
-                       a cost growing with their cube); the other parts keep stage 6's
+                       a cost growing with their cube); the other parts keep stage 6's,
+                       fitted by stage 7 without its choice of segments where it has
+                       gaps (again up to N segments)
   --max-strokes N      strokes in one file (default 100000)
   --max-svg-points N   points one SVG element flattens to (default 200000)
   --max-nesting N      JSON arrays/objects or SVG elements nested (default 256)
