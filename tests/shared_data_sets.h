@@ -122,6 +122,36 @@ inline Stroke resampledEvenly(const Stroke& stroke, double step) {
   return out;
 }
 
+/// The stroke as a slow mouse gives it: scaled to `diagonal` pixels, the pointer's path a
+/// Catmull-Rom spline through the samples, and a sample at every pixel it enters (integer
+/// coordinates, times interpolated), a pixel or two apart where the samples were many.
+inline Stroke walkedByPixels(const Stroke& stroke, double diagonal) {
+  const std::vector<StrokeSample>& in = stroke.samples;
+  std::vector<Vec2> points;
+  for (const StrokeSample& s : in) points.push_back(s.p);
+  const double scale = diagonal / boundingBoxDiagonal(points);
+  Stroke out = stroke;
+  if (in.size() < 2 || !std::isfinite(scale)) return out;
+  out.samples.clear();
+  const std::size_t n = in.size();
+  auto pixel = [&](const Vec2& p) { return Vec2(std::round(scale * p.x()), std::round(scale * p.y())); };
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const Vec2 p0 = in[i > 0 ? i - 1 : 0].p, p1 = in[i].p, p2 = in[i + 1].p, p3 = in[std::min(i + 2, n - 1)].p;
+    const int steps = 4 * std::max(1, static_cast<int>(std::ceil(scale * (p2 - p1).norm())));  // (no pixel skipped)
+    for (int k = 0; k < steps; ++k) {
+      const double t = static_cast<double>(k) / steps;
+      StrokeSample s = between(in[i], in[i + 1], t);
+      s.p = pixel(0.5 * (2.0 * p1 + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t * t +
+                         (3.0 * p1 - p0 - 3.0 * p2 + p3) * t * t * t));
+      if (out.samples.empty() || out.samples.back().p != s.p) out.samples.push_back(s);
+    }
+  }
+  StrokeSample last = in.back();
+  last.p = pixel(last.p);
+  if (out.samples.back().p != last.p) out.samples.push_back(last);
+  return out;
+}
+
 /// How a device or an importer may have handed the samples over (data_benchmark
 /// --handed-over): as drawn; each point averaged with its neighbours by [1 2 1] / 4, the
 /// ends kept (a tablet driver's smoothing: the noise then shared by neighbours); or with
@@ -129,11 +159,14 @@ inline Stroke resampledEvenly(const Stroke& stroke, double step) {
 /// filled at a 300th of the stroke's diagonal (an importer flattening a polyline, about
 /// a pixel at a drawing's size), or resampled by arc length at that spacing without the
 /// samples. The same strokes: the fit should read the same noise and draw about the same
-/// curves.
-enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints, kFilled, kResampled };
+/// curves. Or walked by a slow mouse at a diagonal of 800 pixels (walkedByPixels): the
+/// samples' wiggles, scaled up, are shape at the pixels' scale, so the curves have more
+/// segments; the figures to watch are the time and the guarantees.
+enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints, kFilled, kResampled, kWalked };
 
 inline Stroke handedOver(const Stroke& stroke, HandedOver how) {
   if (how == HandedOver::kMidpoints) return subdivided(stroke, 2);
+  if (how == HandedOver::kWalked) return walkedByPixels(stroke, 800.0);
   if (how == HandedOver::kFilled || how == HandedOver::kResampled) {
     std::vector<Vec2> points;
     for (const StrokeSample& s : stroke.samples) points.push_back(s.p);

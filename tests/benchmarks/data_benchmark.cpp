@@ -18,7 +18,8 @@
 // extrema the smooth parts that have more (QualityFigures::extrema_per_part), of all
 // parts. Strokes fitStroke rejects as degenerate (StrokeError) are counted, not measured.
 // Below the table, per data set, the slowest stroke, the one furthest from its points and
-// the one with the tightest bend, and with a cap, every stroke with a part over it.
+// the one with the tightest bend, every stroke kinked at a joint that is no corner (not G2
+// there: kKink), and with a cap, every stroke with a part over it.
 //
 //   build/tests/benchmarks/data_benchmark [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K]
 //                                         [--repeats=R] [--handed-over=HOW] [--data=DIR] [--rows=FILE]
@@ -48,7 +49,10 @@
 //                  with the `midpoints` of its steps filled in, with its steps `filled`
 //                  evenly a 300th of its diagonal apart, or `resampled` by arc length at
 //                  that spacing; the same strokes, so the figures should stay near those of
-//                  the strokes as drawn
+//                  the strokes as drawn. Or `walked` pixel by pixel by a slow mouse at a
+//                  diagonal of 800 pixels: the samples' wiggles become shape at the
+//                  pixels' scale (more segments), the time and the guarantees are what
+//                  to watch
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // --rows=FILE      also every stroke's figures, one CSV row each (data set, stroke, time ms,
 //                  segments, extrema_dense, max_dev/tol, min_radius/tol), to compare two
@@ -103,7 +107,12 @@ struct StrokeFigures {
   int parts = 0;
   int parts_over_cap = 0;
   double left_out = 0.0;  // CleanStroke::left_out_fraction: drawn length the curve leaves out
+  bool kinked = false;    // a joint that is no corner breaks G1 or G2 (kKink)
 };
+
+// A tangent (radians) or relative curvature gap above this at a joint that is no corner
+// breaks the promise of G2 (issue 16's figure, lacheck's).
+constexpr double kKink = 1e-9;
 
 // A curve that leaves out more of the drawn length than this says so (fitting/pipeline.cpp).
 constexpr double kLeftOutWarning = 0.05;
@@ -120,7 +129,7 @@ StrokeFigures figuresOf(std::string where, const FitResult& r, int cap) {
   const QualityFigures& q = r.quality;
   StrokeFigures f{std::move(where), r.timings.total_ms, q.segments, q.extrema_dense, q.max_dev / r.tolerance,
                   q.min_radius / r.tolerance, static_cast<int>(q.extrema_per_part.size()), 0,
-                  r.cleaned.left_out_fraction};
+                  r.cleaned.left_out_fraction, q.g1_gap > kKink || q.g2_gap > kKink};
   if (cap >= 0)
     f.parts_over_cap = static_cast<int>(std::count_if(q.extrema_per_part.begin(), q.extrema_per_part.end(),
                                                       [cap](int extrema) { return extrema > cap; }));
@@ -230,6 +239,7 @@ void printTable() {
               : how == test::HandedOver::kMidpoints ? " (midpoints filled in)"
               : how == test::HandedOver::kFilled    ? " (steps filled at diagonal / 300)"
               : how == test::HandedOver::kResampled ? " (resampled by arc length at diagonal / 300)"
+              : how == test::HandedOver::kWalked    ? " (walked pixel by pixel at a diagonal of 800 pixels)"
                                                     : "",
               o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)", cap, o.time_budget_ms);
   std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s | %-16s%s\n", "", "", "", "", "time ms", "segments",
@@ -256,6 +266,8 @@ void printTable() {
     std::printf("%-12s slowest %s (%.1f ms); furthest %s (max_dev/tol %.3g); tightest bend %s (min_radius/tol %.3g)\n",
                 kDataSets[i].name, slowest->where.c_str(), slowest->ms, furthest->where.c_str(), furthest->deviation,
                 tightest->where.c_str(), tightest->radius);
+    for (const StrokeFigures& s : f)
+      if (s.kinked) std::printf("%-12s kinked at a joint that is no corner: %s\n", kDataSets[i].name, s.where.c_str());
     for (const StrokeFigures& s : f)
       if (s.parts_over_cap > 0) std::printf("%-12s over the cap: %s (%d parts)\n", kDataSets[i].name, s.where.c_str(), s.parts_over_cap);
     for (const std::string& where : g_results[i].nondeterministic)
@@ -312,6 +324,8 @@ bool takeFlags(int& argc, char** argv) {
       g_settings.handed_over = test::HandedOver::kFilled;
     } else if (arg == "--handed-over=resampled") {
       g_settings.handed_over = test::HandedOver::kResampled;
+    } else if (arg == "--handed-over=walked") {
+      g_settings.handed_over = test::HandedOver::kWalked;
     } else if (arg.starts_with("--handed-over=")) {
       return false;
     } else if (arg == "--paper-only") {
@@ -336,7 +350,7 @@ int main(int argc, char** argv) {
   if (!la::takeFlags(argc, argv)) {
     std::fprintf(stderr,
                  "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--repeats=R] "
-                 "[--handed-over=smoothed|midpoints] [--data=DIR] [--rows=FILE] [benchmark flags]\n",
+                 "[--handed-over=smoothed|midpoints|filled|resampled|walked] [--data=DIR] [--rows=FILE] [benchmark flags]\n",
                  argv[0]);
     return 2;
   }
