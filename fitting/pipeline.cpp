@@ -443,14 +443,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // that misses, which the two parts apart do not need)
     // (nor where the two as one bend tighter than the tolerance: that is a corner; nor
     // where they stray: a noisy stroke's two parts as one looped 29 tolerances away)
-    // (a merge not kept leaves stage 7's room, and the parts' figures, as they were)
-    const std::size_t room = polish_room, repair = repair_room;
-    const bool over_room = r.over_polish_limit;
-    const std::size_t warned = r.warnings.size();
     PartFit smooth = fitOne(merged, false);
     if (!smooth.g2.usable() || !(worstOf(smooth, merged) <= r.tolerance) || bendsTighterThan(smooth.segments, r.tolerance)) {
-      polish_room = room, repair_room = repair, r.over_polish_limit = over_room;
-      r.warnings.resize(warned);
       ++k;
       continue;
     }
