@@ -31,6 +31,7 @@
 
 #include "fitting/pipeline.h"
 #include "fitting/user_edits.h"
+#include "tests/shared_data_sets.h"
 
 #include <gtest/gtest.h>
 
@@ -1122,37 +1123,21 @@ TEST(PipelineLimits, TooManySamplesAreRefusedAndTooManySegmentsKeepStageSix) {
 }
 
 // A slow mouse stroke over coarse stairs (a half circle rounded to a grid of 24 pixels,
-// the pointer's path a Catmull-Rom spline through the stair's vertices, walked pixel by
-// pixel): stages 1-6 find no LA segment for some pieces between the stairs' wiggles, and
-// leave them to stage 7. Past the room of max_polish_segments the chain is still G2:
-// before, those pieces were straight lines, kinks of 0.6 rad at joints that are no
-// corners.
-std::vector<Vec2> slowMouseOverStairs(double grid) {
-  std::vector<Vec2> stairs;
-  for (int i = 0; i < 60; ++i) {
-    const double a = std::numbers::pi * i / 59.0;
-    const Vec2 q(std::round((400.0 + 300.0 * std::cos(a)) / grid) * grid, std::round((400.0 + 300.0 * std::sin(a)) / grid) * grid);
-    if (stairs.empty() || stairs.back() != q) stairs.push_back(q);
-  }
-  std::vector<Vec2> walked;
-  const std::size_t n = stairs.size();
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    const Vec2 p0 = stairs[i > 0 ? i - 1 : 0], p1 = stairs[i], p2 = stairs[i + 1], p3 = stairs[std::min(i + 2, n - 1)];
-    for (int k = 0; k <= 64; ++k) {
-      const double t = k / 64.0;
-      const Vec2 q = 0.5 * (2.0 * p1 + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t * t +
-                            (3.0 * p1 - p0 - 3.0 * p2 + p3) * t * t * t);
-      const Vec2 pixel(std::round(q.x()), std::round(q.y()));
-      if (walked.empty() || walked.back() != pixel) walked.push_back(pixel);
-    }
-  }
-  return walked;
-}
-
+// walked pixel by pixel along a Catmull-Rom path through the stair's vertices:
+// test::walkedByPixels at the stair's own scale): stages 1-6 find no LA segment for some
+// pieces between the stairs' wiggles, and leave them to stage 7. Past the room of
+// max_polish_segments the chain is still G2: before, those pieces were straight lines,
+// kinks of 0.6 rad at joints that are no corners.
 TEST(PipelineLimits, PartsPastTheRoomOfStageSevenAreG2) {
   FitOptions options;
   options.max_polish_segments = 8;
-  const FitResult r = fitStroke(strokeOf(slowMouseOverStairs(24.0)), options);
+  std::vector<Vec2> stairs;
+  for (int i = 0; i < 60; ++i) {
+    const double a = std::numbers::pi * i / 59.0, grid = 24.0;
+    const Vec2 q(std::round((400.0 + 300.0 * std::cos(a)) / grid) * grid, std::round((400.0 + 300.0 * std::sin(a)) / grid) * grid);
+    if (stairs.empty() || stairs.back() != q) stairs.push_back(q);
+  }
+  const FitResult r = fitStroke(test::walkedByPixels(strokeOf(stairs), boundingBoxDiagonal(stairs)), options);
   EXPECT_TRUE(r.over_polish_limit);
   expectGaps(r);
   EXPECT_TRUE(r.g2.usable()) << r.g2.message;
