@@ -271,6 +271,12 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (split && worstOf(*split, part) < worstOf(fit, part)) fit = std::move(*split);
       return one && oneBeats(*one, part, worstOf(fit, part)) ? std::move(*one) : std::move(fit);
     };
+    // (stage 7 on a part's chain, timed; without `choose_segments`, its fit alone)
+    auto polish = [&](PartFit& f, bool choose_segments, SplineStart spline_start = SplineStart::kShotThenHalved) {
+      const auto tp = Clock::now();
+      polishPart(f, part, context, choose_segments, spline_start);
+      r.timings.polish_ms += msSince(tp);
+    };
     PartFit fit = fitPart(part, context, polishing);
     if (polishing && fit.segments.size() > polish_room) {
       if (!r.over_polish_limit)
@@ -285,13 +291,12 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       // in a room of its own as large; past that room, the paper's stages 2-6 cut those
       // pieces, which closes some gaps. (Slow mouse strokes walked pixel by pixel, whose
       // many wiggles fill the room: 26 of 610 came out with kinks of up to 1.1 rad.)
-      if (!fit.g2.usable() && fit.segments.size() <= repair_room) {
+      if (fit.g2.usable()) return fit;
+      if (fit.segments.size() <= repair_room) {
         repair_room -= fit.segments.size();
-        const auto tp = Clock::now();
-        polishPart(fit, part, context, false);
-        r.timings.polish_ms += msSince(tp);
-      } else if (!fit.g2.usable()) {
-        if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) fit = std::move(paper);
+        polish(fit, false);
+      } else if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) {
+        fit = std::move(paper);
       }
       return fit;
     }
@@ -301,21 +306,16 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (options.g2 != G2Method::kOff && overCap(fit.segments, part.closed, context)) polishPart(fit, part, context, false);
       return fit;
     }
-    auto polish = [&](PartFit& f, SplineStart spline_start) {
-      const auto tp = Clock::now();
-      polishPart(f, part, context, true, spline_start);
-      r.timings.polish_ms += msSince(tp);
-    };
     // (the spline's halved spans only after the paper's chain, below: where the shot
     // spans end astray, that is usually closer, and it costs a fraction of them)
     const PartFit unpolished = other_starts ? fit : PartFit{};
-    polish(fit, other_starts ? SplineStart::kShot : SplineStart::kShotThenHalved);
+    polish(fit, true, other_starts ? SplineStart::kShot : SplineStart::kShotThenHalved);
     // Where that leaves a gap, a miss or a stray, other starts: the better result stays
     // (G2 first, then the larger of the deviation from the part's points and the stray).
     auto measure = [&](PartFit& f) { return worstOf(f, part); };
     auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
     auto consider = [&](PartFit other, SplineStart spline_start = SplineStart::kShotThenHalved) {
-      polish(other, spline_start);
+      polish(other, true, spline_start);
       // (G2 first, then the cap on extrema, then the bound on the radius where it is
       // promised, then the deviation: stage 6's chain, unpolished, can be closer and bend
       // 21 times tighter than the tolerance)

@@ -69,6 +69,13 @@ inline Stroke variantOf(const Stroke& stroke, int k) {
   return out;
 }
 
+/// The stroke's points, without their times.
+inline std::vector<Vec2> pointsOf(const Stroke& stroke) {
+  std::vector<Vec2> points;
+  for (const StrokeSample& s : stroke.samples) points.push_back(s.p);
+  return points;
+}
+
 /// The sample at fraction f of the step from a to b (its time too; NaN stays NaN).
 inline StrokeSample between(const StrokeSample& a, const StrokeSample& b, double f) {
   StrokeSample s = a;
@@ -127,9 +134,7 @@ inline Stroke resampledEvenly(const Stroke& stroke, double step) {
 /// coordinates, times interpolated), a pixel or two apart where the samples were many.
 inline Stroke walkedByPixels(const Stroke& stroke, double diagonal) {
   const std::vector<StrokeSample>& in = stroke.samples;
-  std::vector<Vec2> points;
-  for (const StrokeSample& s : in) points.push_back(s.p);
-  const double scale = diagonal / boundingBoxDiagonal(points);
+  const double scale = diagonal / boundingBoxDiagonal(pointsOf(stroke));
   Stroke out = stroke;
   if (in.size() < 2 || !std::isfinite(scale)) return out;
   out.samples.clear();
@@ -168,9 +173,7 @@ inline Stroke handedOver(const Stroke& stroke, HandedOver how) {
   if (how == HandedOver::kMidpoints) return subdivided(stroke, 2);
   if (how == HandedOver::kWalked) return walkedByPixels(stroke, 800.0);
   if (how == HandedOver::kFilled || how == HandedOver::kResampled) {
-    std::vector<Vec2> points;
-    for (const StrokeSample& s : stroke.samples) points.push_back(s.p);
-    const double step = boundingBoxDiagonal(points) / 300.0;
+    const double step = boundingBoxDiagonal(pointsOf(stroke)) / 300.0;
     if (!(step > 0.0)) return stroke;
     return how == HandedOver::kFilled ? filledSteps(stroke, step) : resampledEvenly(stroke, step);
   }

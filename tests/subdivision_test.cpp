@@ -36,23 +36,17 @@ Stroke drawnStroke(unsigned seed) {
   return s;
 }
 
-std::vector<Vec2> pointsOf(const Stroke& s) {
-  std::vector<Vec2> p;
-  for (const StrokeSample& q : s.samples) p.push_back(q.p);
-  return p;
-}
-
 TEST(SubdivisionSamples, ASubdividedStrokesSamplesAreFound) {
   for (unsigned seed : {1u, 2u, 3u, 4u}) {
     const Stroke drawn = drawnStroke(seed);
-    EXPECT_TRUE(subdivisionSamples(pointsOf(drawn)).empty()) << "seed " << seed;
+    EXPECT_TRUE(subdivisionSamples(test::pointsOf(drawn)).empty()) << "seed " << seed;
     for (int k : {2, 3}) {
-      const std::vector<bool> sample = subdivisionSamples(pointsOf(test::subdivided(drawn, k)));
+      const std::vector<bool> sample = subdivisionSamples(test::pointsOf(test::subdivided(drawn, k)));
       ASSERT_EQ(sample.size(), (drawn.samples.size() - 1) * k + 1) << "seed " << seed << ", " << k << "-fold";
       for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_EQ(sample[i], i % k == 0) << "point " << i;
     }
     // (4-fold: every second point found first; those are 2-fold again)
-    const std::vector<bool> sample = subdivisionSamples(pointsOf(test::subdivided(drawn, 4)));
+    const std::vector<bool> sample = subdivisionSamples(test::pointsOf(test::subdivided(drawn, 4)));
     ASSERT_FALSE(sample.empty());
     for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_EQ(sample[i], i % 2 == 0) << "point " << i;
   }
@@ -61,7 +55,7 @@ TEST(SubdivisionSamples, ASubdividedStrokesSamplesAreFound) {
 TEST(SubdivisionSamples, MidpointsPrintedToFourDecimalsAreStillFound) {
   Stroke printed = test::subdivided(drawnStroke(5), 2);
   for (StrokeSample& q : printed.samples) q.p = (q.p * 1e4).array().round() / 1e4;
-  const std::vector<bool> sample = subdivisionSamples(pointsOf(printed));
+  const std::vector<bool> sample = subdivisionSamples(test::pointsOf(printed));
   ASSERT_FALSE(sample.empty());
   for (std::size_t i = 0; i < sample.size(); ++i) EXPECT_EQ(sample[i], i % 2 == 0) << "point " << i;
 }
@@ -133,13 +127,13 @@ TEST(SubdivisionFit, ASubdividedStrokeFitsAsDrawn) {
 TEST(FilledStepSamples, TheSamplesOfFilledStepsAreFound) {
   for (unsigned seed : {1u, 2u, 3u, 4u}) {
     const Stroke drawn = drawnStroke(seed);
-    EXPECT_TRUE(filledStepSamples(pointsOf(drawn)).empty()) << "seed " << seed;
+    EXPECT_TRUE(filledStepSamples(test::pointsOf(drawn)).empty()) << "seed " << seed;
     for (double step : {0.3, 1.0}) {
       Stroke filled = test::filledSteps(drawn, step);
       for (bool printed : {false, true}) {
         if (printed)
           for (StrokeSample& q : filled.samples) q.p = (q.p * 1e4).array().round() / 1e4;
-        const std::vector<Vec2> p = pointsOf(filled);
+        const std::vector<Vec2> p = test::pointsOf(filled);
         const std::vector<bool> sample = filledStepSamples(p);
         ASSERT_EQ(sample.size(), p.size()) << "seed " << seed << ", step " << step;
         std::size_t next = 0;  // (the drawn samples, in order, are the points kept)
@@ -160,7 +154,7 @@ TEST(FilledStepSamples, ResampledByArcLengthKeepsThePointsBesideTheSamples) {
   for (unsigned seed : {1u, 2u, 3u}) {
     const Stroke drawn = drawnStroke(seed);
     const double step = 0.4;
-    const std::vector<Vec2> p = pointsOf(test::resampledEvenly(drawn, step));
+    const std::vector<Vec2> p = test::pointsOf(test::resampledEvenly(drawn, step));
     const std::vector<bool> sample = filledStepSamples(p);
     ASSERT_EQ(sample.size(), p.size()) << "seed " << seed;
     std::size_t kept = 0;
@@ -210,9 +204,9 @@ TEST(FilledStepSamples, APixelStrokeFilledKeepsItsPixels) {
     const Vec2 q(std::round(40.0 * std::cos(a) + 10.0 * std::cos(3.0 * a)), std::round(40.0 * std::sin(a)));
     if (walk.samples.empty() || q != walk.samples.back().p) walk.samples.push_back({q});
   }
-  const std::vector<Vec2> pixels = pointsOf(walk);
+  const std::vector<Vec2> pixels = test::pointsOf(walk);
   ASSERT_TRUE(filledStepSamples(pixels).empty());
-  const std::vector<Vec2> p = pointsOf(test::filledSteps(walk, 0.25));
+  const std::vector<Vec2> p = test::pointsOf(test::filledSteps(walk, 0.25));
   const std::vector<bool> sample = filledStepSamples(p);
   ASSERT_EQ(sample.size(), p.size());
   std::vector<Vec2> kept;
