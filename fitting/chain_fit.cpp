@@ -1249,6 +1249,8 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   if (!options.weights.empty() && options.weights.size() != all_points.size()) return refuse("weights and points differ in count");
   if (options.window && (options.closed || options.fix_start || options.fix_end || !options.corners.empty()))
     return refuse("a window is open, without corners, and its ends are its own");
+  if (options.held_start && (!options.fix_start || options.closed || options.window))
+    return refuse("a held start is a fixed start of an open chain");
 
   // Normalized frame: the chain's start at the origin, unit bounding-box diagonal.
   const Vec2 origin = initial.front().start();
@@ -1276,7 +1278,9 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     layout.start = add(0.0, -INFINITY, INFINITY, kMaxPointStep);
     add(0.0, -INFINITY, INFINITY, kMaxPointStep);
   }
-  layout.theta = add(initial.front().theta0(), -INFINITY, INFINITY, kMaxAngleStep);
+  // (a held start's tangent and curvature: unknowns whose bounds meet)
+  if (const auto& held = options.held_start) layout.theta = add(held->theta, held->theta, held->theta, kMaxAngleStep);
+  else layout.theta = add(initial.front().theta0(), -INFINITY, INFINITY, kMaxAngleStep);
   // Corners: joints where only the position is continuous; each point's foot stays on
   // its part's segments (FootRange).
   const std::size_t m = points.size();
@@ -1323,6 +1327,12 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     if (j > 0 || options.closed) at_end[j > 0 ? j - 1 : before] = kappa.size();
     kappa.push_back((left == 0.0 || right == 0.0) ? 0.0 : std::copysign(std::sqrt(left * right), right) * scale);
   }
+  if (const auto& held = options.held_start) {
+    kappa[0] = held->kappa * scale;
+    const double next = n > 1 ? kappa[at_start[1]] : kappa[at_end[0]];
+    if (kappa[0] * next < 0.0) return refuse("the held start's curvature changes sign along the first segment");
+    if (kappa[0] != 0.0 && initial.front().isStraight()) return refuse("a held start that bends cannot start a line");
+  }
   double kappa_max = 0.0;
   for (double k : kappa) kappa_max = std::max(kappa_max, std::abs(k));
   // (never above a joint of the initial chain: raising one would change the chain before
@@ -1339,6 +1349,11 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
       continue;
     }
     const double value = std::copysign(std::clamp(std::abs(k), floor, ceiling), k);
+    if (options.held_start && kappa_unknown.empty()) {
+      if (value != k) return refuse("the held start's curvature is beyond the bound on curvature");
+      kappa_unknown.push_back(add(value, value, value, kMaxRelativeKappaStep * std::abs(value)));
+      continue;
+    }
     kappa_unknown.push_back(k > 0.0 ? add(value, floor, ceiling, kMaxRelativeKappaStep * std::abs(value))
                                     : add(value, -ceiling, -floor, kMaxRelativeKappaStep * std::abs(value)));
   }

@@ -58,6 +58,7 @@
 // constraints), and geodesic acceleration needs the model's second derivative along
 // the step.
 
+#include <optional>
 #include <vector>
 
 #include "core/la_segment.h"
@@ -88,6 +89,13 @@ struct ChainFitOptions {
   bool closed = false;      // the chain is closed: its end returns to its start, G2
   bool fix_start = false;   // the chain starts at the first point (a corner) and stays there
   bool fix_end = false;     // the chain ends at the last point (a corner) and stays there
+  /// With fix_start: the start's tangent angle and signed curvature (world units) are
+  /// held at these too: the chain goes on G2 from one fitted before it, whose end is the
+  /// first point. Not with closed or window.
+  struct HeldStart {
+    double theta = 0.0, kappa = 0.0;
+  };
+  std::optional<HeldStart> held_start;
   /// The chain is a window of a longer G2 chain (its segments near an edit), to stay G2
   /// with the segments on either side: it keeps its start's position, tangent and
   /// curvature as `initial` has them, and ends at `window_end` (position, tangent) with

@@ -517,6 +517,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     ChainFitOptions o = base;
     o.corners.clear();
     o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
+    o.held_start.reset();
     o.weights.clear();
     // (the segments from hi on are the chain's from hi + old_n - n on, unedited)
     const auto unedited = out.fit.segments.begin() + static_cast<std::ptrdiff_t>(hi + old_n - n);

@@ -291,12 +291,27 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       // in a room of its own as large; past that room, the paper's stages 2-6 cut those
       // pieces, which closes some gaps. (Slow mouse strokes walked pixel by pixel, whose
       // many wiggles fill the room: 26 of 610 came out with kinks of up to 1.1 rad.)
-      if (fit.g2.usable()) return fit;
-      if (fit.segments.size() <= repair_room) {
-        repair_room -= fit.segments.size();
-        polish(fit, false);
-      } else if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) {
-        fit = std::move(paper);
+      if (!fit.g2.usable()) {
+        if (fit.segments.size() <= repair_room) {
+          repair_room -= fit.segments.size();
+          polish(fit, false);
+        } else if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) {
+          fit = std::move(paper);
+        }
+      }
+      // Where that leaves gaps, or the chain bends tighter than the tolerance, stage 7 in
+      // pieces (an open part's, at a cost that grows with its pieces): kept where it
+      // strays no further and is no further from the points, or within twice the
+      // tolerance of them.
+      if (!part.closed && (!fit.g2.usable() || !keepsTheBound(fit.segments, context))) {
+        const auto tp = Clock::now();
+        PartFit pieces = fit;
+        if (polishInPieces(pieces, part, context)) {
+          const double worst_pieces = worstOf(pieces, part), worst = worstOf(fit, part);
+          const bool sound = pieces.stray <= std::max(kStrayWarning * r.tolerance, fit.stray);
+          if (sound && (worst_pieces <= worst || worst_pieces <= kAstrayFit * r.tolerance)) fit = std::move(pieces);
+        }
+        r.timings.polish_ms += msSince(tp);
       }
       return fit;
     }

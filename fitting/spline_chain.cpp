@@ -25,7 +25,7 @@ namespace {
 // segment. `length`: the spline's length between each piece's splits.
 std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
                                  double min_alpha, double max_alpha, const Budget& budget,
-                                 std::vector<double>& length) {
+                                 std::vector<double>& length, const std::optional<ChainStart>& from) {
   constexpr int kSteps = 16;           // per piece, for its turning and length
   constexpr double kSmallKappa = 0.3;  // of the piece's mean curvature, where the spline's has the wrong sign
   auto measure = [&](double t0, double t1, double& turning, double& length) {
@@ -50,11 +50,13 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
     turning.assign(n, 0.0);
     length.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
-    for (std::size_t i = 0; i < n && n >= 3; ++i) {
-      const bool has_before = closed || i > 0, has_after = closed || i + 1 < n;
-      if (!has_before || !has_after) continue;
+    for (std::size_t i = 0; i < n && n >= 2; ++i) {
+      // (a chain that goes on from zero curvature starts at an inflection)
+      const bool zero_start = i == 0 && from && from->kappa == 0.0;
+      const bool has_before = closed || i > 0 || zero_start, has_after = closed || i + 1 < n;
+      if (!has_before || !has_after || (n < 3 && !zero_start)) continue;
       const double s = sign(turning[i]);
-      if (sign(turning[(i + n - 1) % n]) == s || sign(turning[(i + 1) % n]) == s) continue;
+      if ((!zero_start && sign(turning[(i + n - 1) % n]) == s) || sign(turning[(i + 1) % n]) == s) continue;
       double best_t = 0.5 * (spans[i].t0 + spans[i].t1), best = 0.0;
       for (int k = 1; k < kSteps; ++k) {
         const double t = spans[i].t0 + (spans[i].t1 - spans[i].t0) * k / kSteps;
@@ -86,9 +88,10 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
   // end curvature and alpha that bring its end closest to the next split point (Gauss-
   // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
   // then follows the spline's joints instead of drifting with its curvature errors.
+  if (from) kappa[0] = from->kappa;
   std::vector<LaSegment> chain;
-  Vec2 start = spline.point(spline.wrap(spans.front().t0));
-  double theta = splineTangentAngle(spline, spline.wrap(spans.front().t0));
+  Vec2 start = from ? from->point : spline.point(spline.wrap(spans.front().t0));
+  double theta = from ? from->theta : splineTangentAngle(spline, spline.wrap(spans.front().t0));
   for (std::size_t i = 0; i < n; ++i) {
     // (out of time: no chain; a hostile stroke's shots, each end of a segment with a cusp
     // placed to 1e-10 of its length, took seconds past the budget)
@@ -166,12 +169,12 @@ std::optional<LaSegment> shootSegment(double turning, const Vec2& start, double 
 // inside if any) and the chain shot again, at most kMaxHalvings times.
 std::vector<LaSegment> chainFromSpline(const CubicBSpline& spline, std::vector<PieceReport>& spans, bool closed,
                                        double min_alpha, double max_alpha, bool halve,
-                                       const Budget& budget) {
+                                       const Budget& budget, const std::optional<ChainStart>& from) {
   constexpr double kShotLengthRatio = 2.0;
   constexpr int kMaxHalvings = 6;
   for (int halvings = 0;; ++halvings) {
     std::vector<double> length;
-    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, budget, length);
+    const std::vector<LaSegment> chain = shotChain(spline, spans, closed, min_alpha, max_alpha, budget, length, from);
     const std::size_t n = chain.size();
     std::size_t astray = n;
     for (std::size_t i = 0; i < n && astray == n; ++i)

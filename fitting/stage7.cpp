@@ -455,6 +455,113 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
     fit.reports[i].alpha_standard_error = polished.alpha_standard_error[i];
 }
 
+namespace {
+
+// polishInPieces: a piece is this many of the spline's spans (stage 7's fit of a piece's
+// chain grows with the cube of its segments, about 1.5 per span) and is fitted with this
+// many of the next piece's; its joints meet G2 where the tangent (radians) and the
+// relative curvature agree to kG2Joint (data_benchmark's kKink).
+constexpr std::size_t kPieceSpans = 12, kPieceOverlap = 3;
+constexpr double kG2Joint = 1e-9;
+
+}  // namespace
+
+bool polishInPieces(PartFit& fit, const Part& part, const FitContext& context) {
+  const std::vector<Vec2>& points = part.points;
+  const double diag = context.diagonal, tol = context.tolerance;
+  const std::vector<PieceReport>& spans = fit.spans;
+  const std::size_t n = spans.size();
+  if (part.closed || !fit.spline || n < 2 || fit.parameters.size() != points.size()) return false;
+  const FitOptions& options = context.options;
+  const SelectionOptions part_options = stage7Selection(context, part);
+  // (the first point at or past spline parameter t: the points' parameters grow)
+  auto pointAt = [&](double t) {
+    return static_cast<std::size_t>(std::lower_bound(fit.parameters.begin(), fit.parameters.end(), t) - fit.parameters.begin());
+  };
+  std::vector<LaSegment> out;
+  std::vector<ChainFoot> feet;
+  for (std::size_t a = 0, p0 = 0; a < n;) {
+    // Each piece is fitted over its spans and a few of the next piece's, and keeps its
+    // segments up to its own points' last foot: where it ends, the points on both sides
+    // have placed it. Points p0..p1 are its own, p1..p2 the next piece's it also fits.
+    std::size_t b = std::min(n, a + kPieceSpans);
+    if (n - b < kPieceSpans / 2) b = n;
+    const std::size_t reach = b == n ? n : std::min(n, b + kPieceOverlap);
+    const bool first = out.empty(), last = b == n;
+    const std::size_t p1 = last ? points.size() : pointAt(spans[b].t0);
+    const std::size_t p2 = reach == n ? points.size() : pointAt(spans[reach].t0);
+    if (p1 < p0 + 2) return false;
+    std::optional<ChainStart> from;
+    if (!first) from = ChainStart{out.back().end(), out.back().theta(out.back().length()), out.back().kappaEnd()};
+    std::vector<PieceReport> piece(spans.begin() + static_cast<std::ptrdiff_t>(a), spans.begin() + static_cast<std::ptrdiff_t>(reach));
+    if (!first) piece.front().t0 = std::max(piece.front().t0, fit.parameters[p0]);
+    auto shoot = [&] {
+      std::vector<PieceReport> shot = piece;
+      return chainFromSpline(*fit.spline, shot, false, options.min_alpha, options.max_alpha, true, context.budget, from);
+    };
+    std::vector<LaSegment> start = shoot();
+    // (the rest of the span the piece starts in may turn too little, or against the
+    // curvature it starts with: it joins the next span)
+    for (int joined = 0; start.empty() && joined < 2 && piece.size() > 2; ++joined) {
+      piece[1].t0 = piece[0].t0;
+      piece[1].start_kind = piece[0].start_kind;
+      piece.erase(piece.begin());
+      start = shoot();
+    }
+    if (start.empty() && from && from->kappa != 0.0) {
+      // (no LA segment goes on from the kept segments' end curvature along the spline:
+      // a clothoid a tolerance long takes it to 0 first, G2)
+      try {
+        out.push_back(LaSegment(-1.0, tol, from->point, from->theta, from->kappa, 0.0));
+      } catch (const std::invalid_argument&) {
+        return false;
+      }
+      from = ChainStart{out.back().end(), out.back().theta(out.back().length()), 0.0};
+      start = shoot();
+    }
+    std::vector<Vec2> near;
+    if (from) near.push_back(from->point);  // (the held start is the first point)
+    near.insert(near.end(), points.begin() + static_cast<std::ptrdiff_t>(p0), points.begin() + static_cast<std::ptrdiff_t>(p2));
+    if (start.empty() || near.size() < 3) return false;
+    SelectionOptions so = part_options;
+    so.fit.fix_end = reach == n && part_options.fit.fix_end;
+    if (from) {
+      so.fit.fix_start = true;
+      so.fit.held_start = ChainFitOptions::HeldStart{from->theta, from->kappa};
+    }
+    const SelectionResult selected = selectChain(start, near, {}, so);
+    const ChainFitResult& r = selected.fit;
+    if (r.report.status == SolveStatus::kBadInput || r.segments.empty() || r.feet.size() != near.size()) return false;
+    const std::size_t offset = from ? 1 : 0;  // (near's index of points[p0])
+    const std::size_t kept = last ? r.segments.size() : r.feet[offset + (p1 - 1 - p0)].segment + 1;
+    std::size_t next = p0;
+    for (std::size_t k = p0; k < p2 && r.feet[offset + k - p0].segment < kept; ++k) {
+      feet.push_back({r.feet[offset + k - p0].segment + out.size(), r.feet[offset + k - p0].u});
+      next = k + 1;
+    }
+    if (next <= p0 + 1) return false;
+    out.insert(out.end(), r.segments.begin(), r.segments.begin() + static_cast<std::ptrdiff_t>(kept));
+    if (last) break;
+    p0 = next;
+    // (the next piece starts in the span holding its first point)
+    a = static_cast<std::size_t>(std::upper_bound(spans.begin(), spans.end(), fit.parameters[p0],
+                                                  [](double t, const PieceReport& s) { return t < s.t1; }) -
+                                 spans.begin());
+    if (a >= n) return false;
+  }
+  if (feet.size() != points.size()) return false;
+  for (std::size_t j = 1; j < out.size(); ++j)
+    if (std::abs(turnBetween(out[j - 1], out[j])) > kG2Joint || relativeGap(out[j - 1].kappaEnd(), out[j].kappaStart(), diag) > kG2Joint)
+      return false;
+  fit.segments = std::move(out);
+  fit.max_dev = maxDeviationOf(fit.segments, points, diag);
+  fit.stray = NAN;
+  fit.warnings.clear();
+  fit.g2 = {SolveStatus::kConverged, 0, 0.0, "G2 by construction (stage 7, in pieces)"};
+  fit.reports = reportsOf(fit.segments, feet, fit.parameters, *fit.spline, false);
+  return true;
+}
+
 // How far a part's chain goes from the part's polyline (strayFromPoints), measured only
 // where the chain is longer than the polyline (kStrayLength; else 0): a loop adds
 // length, noise only to the polyline, and the measure costs a grid of the points. With

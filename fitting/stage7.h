@@ -42,6 +42,17 @@ enum class SplineStart { kShotThenHalved, kShot, kHalved };
 void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool choose_segments = true,
                 SplineStart spline_start = SplineStart::kShotThenHalved);
 
+/// Stage 7 on an open part whose chain is past the room of its fit as a whole (whose
+/// linear algebra grows with the cube of the segments): in pieces of a dozen of the
+/// spline's spans, one after another, each started from the spline (fitting/
+/// spline_chain.h) where the piece before it ends, its segments chosen and fitted to its
+/// points and to the next piece's first few with its start held there (position,
+/// tangent, curvature: G2 by construction), and kept up to its own points' last foot.
+/// The work grows with the pieces. True where it made the chain (fit updated as
+/// polishPart updates it); false, and the chain as it was, where a piece's start or fit
+/// is refused.
+bool polishInPieces(PartFit& fit, const Part& part, const FitContext& context);
+
 /// Stage 7's selection options: the tolerance less a margin, the alpha range and the
 /// bound on curvature, the points and iterations per fit, the noise, the cap and the
 /// budget; closure, fixed ends and corners are the caller's (a part's: the overload below).

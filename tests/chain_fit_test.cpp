@@ -289,6 +289,39 @@ TEST(ChainFit, AWindowKeepsItsEndsAndFitsItsInside) {
   EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 150.0);
 }
 
+// The last two segments of a three-segment chain fitted from a start off in every alpha,
+// length and curvature, their start held where the first one ends (its position as the
+// first point, its tangent and curvature as held_start): the fit keeps them exactly
+// (the chain goes on G2) and comes back to the truth.
+TEST(ChainFit, AHeldStartKeepsItsTangentAndCurvature) {
+  const std::vector<LaSegment> truth = buildChain({5, -3}, 0.2, 0.01, {{0.5, 60.0, 0.02}, {1.5, 50.0, 0.006}, {-0.5, 55.0, 0.015}});
+  const std::vector<LaSegment> rest(truth.begin() + 1, truth.end());
+  std::vector<Vec2> points = sampleChain(rest, 100, 0.0, 5);
+  points.insert(points.begin(), rest.front().start());
+  const std::vector<LaSegment> start =
+      buildChain(rest.front().start(), rest.front().theta0() + 0.05, 0.012, {{0.8, 47.0, 0.008}, {-1.0, 60.0, 0.012}});
+  ChainFitOptions options;
+  options.fix_start = true;
+  options.held_start = ChainFitOptions::HeldStart{rest.front().theta0(), rest.front().kappaStart()};
+  const ChainFitResult r = fitChain(start, points, {}, options);
+  ASSERT_TRUE(r.improved) << r.report.message;
+  ASSERT_EQ(r.segments.size(), 2u);
+  EXPECT_EQ(r.segments.front().start(), rest.front().start());
+  EXPECT_EQ(r.segments.front().theta0(), rest.front().theta0());
+  EXPECT_NEAR(r.segments.front().kappaStart(), rest.front().kappaStart(), 1e-15);
+  expectG2(r.segments);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(r.segments[i].alpha(), rest[i].alpha(), 5e-3) << "segment " << i;
+  EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 150.0);
+}
+
+// A held start is a fixed one: its position is the first point.
+TEST(ChainFit, RefusesAHeldStartThatIsNotFixed) {
+  const std::vector<LaSegment> chain = buildChain({0, 0}, 0.0, 0.01, {{0.5, 60.0, 0.02}});
+  ChainFitOptions options;
+  options.held_start = ChainFitOptions::HeldStart{0.0, 0.01};
+  EXPECT_EQ(fitChain(chain, sampleChain(chain, 20, 0.0, 1), {}, options).report.status, SolveStatus::kBadInput);
+}
+
 // A window's ends are set by the segments beside it, not by corner points.
 TEST(ChainFit, RefusesAWindowWithEndsOfItsOwn) {
   const std::vector<LaSegment> chain = buildChain({0, 0}, 0.0, 0.01, {{0.5, 60.0, 0.02}});

@@ -1,4 +1,5 @@
-// Stage 7's last word on the cap on curvature extrema (fitting/stage7.h, keepTheCap): a
+// Stage 7 in pieces (polishInPieces), where a part's chain is past the room of its fit as
+// a whole. Stage 7's last word on the cap on curvature extrema (fitting/stage7.h, keepTheCap): a
 // part whose chain still keeps more extrema than the cap is replaced by a curve that has
 // none, one LA segment between its ends or, closed, the circle closest to its points.
 // And the circular arc between a part's ends closest to its points (closestArcPart).
@@ -6,6 +7,8 @@
 // independently of the chain fit (tests/test_support.h).
 
 #include "fitting/stage7.h"
+
+#include "fitting/paper_stages.h"
 
 #include "tests/test_support.h"
 
@@ -22,6 +25,7 @@ namespace {
 using test::buildChain;
 using test::maxDistance;
 using test::sampleChain;
+using test::Spec;
 
 // A wave between two corners: curvature 0.01 -> 0.03 -> 0.01 -> 0.03 (two extrema), its
 // points noise-free.
@@ -39,6 +43,40 @@ struct Context {
   StageTimings timings;
   FitContext of(double tolerance, double diagonal) { return FitContext{options, tolerance, Noise{}, diagonal, timings}; }
 };
+
+// A wave of 12 bumps (24 clothoid segments, curvature 0 -> +-0.03 -> 0, 1.8 rad each),
+// 720 points with noise of 0.05: stages 2-6 prepare it, and stage 7 in pieces fits it
+// piece after piece. Every joint meets G2 (measured here on the segments), and every
+// point is within the tolerance of the chain.
+TEST(PolishInPieces, ALongWaveComesBackG2AndWithinTheTolerance) {
+  std::vector<Spec> specs;
+  for (int bump = 0; bump < 12; ++bump) {
+    const double sign = bump % 2 == 0 ? 1.0 : -1.0;
+    specs.push_back({-1.0, 60.0, 0.03 * sign});
+    specs.push_back({-1.0, 60.0, 0.0});
+  }
+  const std::vector<LaSegment> wave = buildChain({0, 0}, -0.9, 0.0, specs);
+  Part part;
+  part.points = sampleChain(wave, 30, 0.05, 7);
+  Context c;
+  const double tolerance = 0.3, diagonal = boundingBoxDiagonal(part.points);
+  FitContext context = c.of(tolerance, diagonal);
+  context.noise.sigma = 0.05;
+  PartFit fit = fitPart(part, context, true);
+  ASSERT_GE(fit.spans.size(), 24u) << "the wave is one piece: this test shows nothing";
+  ASSERT_TRUE(polishInPieces(fit, part, context));
+  for (std::size_t j = 1; j < fit.segments.size(); ++j) {
+    const LaSegment &a = fit.segments[j - 1], &b = fit.segments[j];
+    EXPECT_LT((a.end() - b.start()).norm(), 1e-9 * diagonal) << "joint " << j;
+    EXPECT_LT(std::abs(std::remainder(a.theta(a.length()) - b.theta0(), 2.0 * std::numbers::pi)), 1e-9) << "joint " << j;
+    EXPECT_LE(std::abs(a.kappaEnd() - b.kappaStart()), 1e-9 * std::max(std::abs(a.kappaEnd()), 1.0 / diagonal)) << "joint " << j;
+  }
+  const double deviation = maxDistance(fit.segments, part.points);
+  EXPECT_LE(deviation, tolerance);
+  EXPECT_NEAR(fit.max_dev, deviation, 1e-3 * diagonal);
+  EXPECT_TRUE(fit.g2.usable());
+  ASSERT_EQ(fit.reports.size(), fit.segments.size());
+}
 
 // Over the cap, the part becomes one LA segment from corner to corner (it keeps its ends:
 // the parts beside it meet it there), its deviation the one measured here.
