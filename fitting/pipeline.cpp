@@ -283,7 +283,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
         r.warnings.push_back("stage 7 left parts with the chain of stages 1-6: the stroke's chains have more than " +
                              std::to_string(options.max_polish_segments) +
                              " segments in all (FitOptions::max_polish_segments; lafit --max-polish-segments); "
-                             "where that chain has gaps, stage 7 fits it without choosing its segments");
+                             "where that chain has gaps, stage 7 fits it without choosing its segments; where an "
+                             "open part's still has gaps or bends tighter than the tolerance, in pieces");
       r.over_polish_limit = true;
       // The chain left for stage 7 to complete has gaps where no LA segment fits a
       // piece (straight lines there: kinks where the user drew none). Stage 7's fit of it

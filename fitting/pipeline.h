@@ -115,8 +115,10 @@ struct FitOptions {
   /// parts in turn while their stage-6 chains add up to at most max_polish_segments; the
   /// others keep the stage-6 chain, with a warning (a scribble of a thousand turns); where
   /// that chain has gaps (pieces no LA segment fits), stage 7 fits it without choosing its
-  /// segments, while those add up to at most max_polish_segments again. The
-  /// shared data's strokes have at most 27. lafit --max-points, --max-polish-segments.
+  /// segments, while those add up to at most max_polish_segments again; where an open
+  /// part's chain still has gaps or bends tighter than the tolerance, stage 7 fits it in
+  /// pieces of a dozen spline spans (polishInPieces, fitting/stage7.h). The shared data's
+  /// strokes have at most 27. lafit --max-points, --max-polish-segments.
   std::size_t max_points = 1'000'000;
   std::size_t max_polish_segments = 40;
 };

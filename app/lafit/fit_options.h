@@ -48,7 +48,8 @@ stage 7 left out, with a message naming the flag):
                        one stroke (default 40; it fits a part's whole chain at once, at
                        a cost growing with their cube); the other parts keep stage 6's,
                        fitted by stage 7 without its choice of segments where it has
-                       gaps (again up to N segments)
+                       gaps (again up to N segments), and an open part's in pieces
+                       where it still has gaps or bends tighter than the tolerance
   --max-strokes N      strokes in one file (default 100000)
   --max-svg-points N   points one SVG element flattens to (default 200000)
   --max-nesting N      JSON arrays/objects or SVG elements nested (default 256)
