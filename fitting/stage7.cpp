@@ -543,6 +543,7 @@ bool polishInPieces(PartFit& fit, const Part& part, const FitContext& context) {
     out.insert(out.end(), r.segments.begin(), r.segments.begin() + static_cast<std::ptrdiff_t>(kept));
     if (last) break;
     p0 = next;
+    if (p0 >= points.size()) return false;  // (no point left for the spans left)
     // (the next piece starts in the span holding its first point)
     a = static_cast<std::size_t>(std::upper_bound(spans.begin(), spans.end(), fit.parameters[p0],
                                                   [](double t, const PieceReport& s) { return t < s.t1; }) -
