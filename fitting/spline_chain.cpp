@@ -50,7 +50,7 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
     turning.assign(n, 0.0);
     length.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) measure(spans[i].t0, spans[i].t1, turning[i], length[i]);
-    for (std::size_t i = 0; i < n && n >= 2; ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       // (a chain that goes on from zero curvature starts at an inflection)
       const bool zero_start = i == 0 && from && from->kappa == 0.0;
       const bool has_before = closed || i > 0 || zero_start, has_after = closed || i + 1 < n;
