@@ -624,9 +624,12 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     const double allowed = kStrayWarning * f.tolerance + medianStep(f.cleaned.points);
     return f.quality.max_dev > f.tolerance || strayBeyond(f.curve, f.cleaned.points, f.quality.diagonal, allowed) > 0.0;
   };
-  // (a curve bending tighter than the tolerance that another fit may mend)
+  // (a curve bending tighter than the tolerance that another fit may mend; also one past
+  // stage 7's room, whose parts' chains keep the bound only where stage 7 or its pieces
+  // fitted them: slow mouse strokes walked pixel by pixel bent up to 3,500 times tighter
+  // than the tolerance, in a part whose chain the fit without the bound had made)
   auto mendable = [&](const FitResult& f) {
-    return polishing && !f.cleaned.straight && !f.out_of_time && !f.over_polish_limit && bendsTighterThanTolerance(f);
+    return polishing && !f.cleaned.straight && !f.out_of_time && bendsTighterThanTolerance(f);
   };
   // The stroke fitted again with corners at `bends` as well as at `earlier` ones, with
   // the bound, in about the work the fit took so far, and the first fit's tolerance
