@@ -695,8 +695,9 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // without it, as above, also after its tight bends became corners: a capped stroke),
   // the stroke with those corners and the bound kept everywhere: no bend tighter than
   // the tolerance comes first, as the cap on extrema does, and the warnings say what it
-  // costs.
-  if (!corners_at.empty() && mendable(r)) {
+  // costs. Also where no corner could go (a bend within two samples of a corner: a walked
+  // star's side curled into its tip with a radius of a third of the tolerance).
+  if (mendable(r)) {
     FitResult strict =
         fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, budget, corners_at, first_tolerance);
     if (strict.g2.usable() && !strict.out_of_time && strict.quality.max_abs_kappa < r.quality.max_abs_kappa &&

@@ -130,9 +130,10 @@ inline Stroke resampledEvenly(const Stroke& stroke, double step) {
 }
 
 /// The stroke as a slow mouse gives it: scaled to `diagonal` pixels, the pointer's path a
-/// Catmull-Rom spline through the samples, and a sample at every pixel it enters (integer
-/// coordinates, times interpolated), a pixel or two apart where the samples were many.
-inline Stroke walkedByPixels(const Stroke& stroke, double diagonal) {
+/// Catmull-Rom spline through the samples (or, `along_polyline`, the straight steps between
+/// them), and a sample at every pixel it enters (integer coordinates, times interpolated),
+/// a pixel or two apart where the samples were many.
+inline Stroke walkedByPixels(const Stroke& stroke, double diagonal, bool along_polyline = false) {
   const std::vector<StrokeSample>& in = stroke.samples;
   const double scale = diagonal / boundingBoxDiagonal(pointsOf(stroke));
   Stroke out = stroke;
@@ -146,8 +147,9 @@ inline Stroke walkedByPixels(const Stroke& stroke, double diagonal) {
     for (int k = 0; k < steps; ++k) {
       const double t = static_cast<double>(k) / steps;
       StrokeSample s = between(in[i], in[i + 1], t);
-      s.p = pixel(0.5 * (2.0 * p1 + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t * t +
-                         (3.0 * p1 - p0 - 3.0 * p2 + p3) * t * t * t));
+      s.p = pixel(along_polyline ? Vec2(p1 + (p2 - p1) * t)
+                                 : Vec2(0.5 * (2.0 * p1 + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t * t +
+                                               (3.0 * p1 - p0 - 3.0 * p2 + p3) * t * t * t)));
       if (out.samples.empty() || out.samples.back().p != s.p) out.samples.push_back(s);
     }
   }
