@@ -558,6 +558,21 @@ TEST(FitDataRegression, ATightBendWhereNoCornerCanGoGivesWayToTheBound) {
   expectG2(r);
 }
 
+// An Omniglot stroke (Early_Aramaic 0259_07's first) walked pixel by pixel at 800 pixels:
+// past stage 7's room its curve was kinked (a tangent gap of 0.66 rad at a joint that is
+// no corner), 2.5 tolerances off, and bent 4 times tighter than the tolerance. The fit
+// again with corners at its tight bends was closer and bent less, but kinked as well, and
+// was refused for the kink; a rerun with a kink now replaces a curve with one, and the
+// next round's rerun is G2, bends no tighter than the tolerance and is 1.2 tolerances off.
+TEST(FitDataRegression, AKinkedCurvesRerunWithCornersReplacesItWhereItIsBetter) {
+  const std::vector<Stroke> all = readStrokes(kData / "strokes/omniglot_small1_sample/csv/Early_Aramaic/character09/0259_07.csv");
+  ASSERT_FALSE(all.empty());
+  const FitResult r = fitStroke(test::handedOver(all[0], test::HandedOver::kWalked), {});
+  expectG2(r);
+  EXPECT_GE(r.quality.min_radius, r.tolerance / kTighterThanTolerance);
+  EXPECT_LE(r.quality.max_dev, 1.5 * r.tolerance);
+}
+
 // No file of a fittable kind lies outside the data sets above (new data is not skipped
 // silently), and the sets hold what SOURCES.md says they hold.
 TEST(FitDataFiles, EveryFileBelongsToADataSet) {
