@@ -648,6 +648,14 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // (a refit that strays further than the warning's bound and than the curve it would
   // replace: a loop where the stroke has none is no mend for a tight bend)
   auto strays = [&](const FitResult& f) { return f.stray > std::max(kStrayWarning * f.tolerance, r.stray); };
+  // (a refit that mends a tight bend: in time, bending less, not straying, and G2 where
+  // the curve is; a refit with a kink replaces only a curve with one: past stage 7's room,
+  // a walked stroke's kinked curve 3.3 tolerances off stayed so, where the refit was 1.2
+  // off and the next one G2)
+  auto mendsTheBend = [&](const FitResult& f) {
+    return !f.out_of_time && (f.g2.usable() || !r.g2.usable()) && !strays(f) &&
+           f.quality.max_abs_kappa < r.quality.max_abs_kappa;
+  };
   std::vector<Vec2> corners_at;
   // (a miss by the stray alone is fitted again only where some joint is on the bound, as
   // every miss was before: measuring the stray is a pass over the curve, which for every
@@ -678,19 +686,15 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // Where the curve still bends tighter than the tolerance (the clean-up saw no corner
   // there, and the bound cost the tolerance), a corner at the bend, and the stroke fitted
   // again with the bound, in about the work the fit took so far: kept where it bends less
-  // tightly and keeps the tolerance (or misses it by no more, or by kCorneredMiss), and is
-  // G2 where the curve is (a rerun with a kink replaces only a curve with one: past stage
-  // 7's room, a walked stroke's kinked curve 3.3 tolerances off stayed so, where the
-  // rerun was 1.2 off and the next one G2).
+  // tightly (mendsTheBend) and keeps the tolerance (or misses it by no more, or by
+  // kCorneredMiss).
   for (int round = 0; round < kTightBendRounds && mendable(r); ++round) {
     const std::vector<Vec2> more = tightBends(r);
     std::optional<FitResult> cornered = corneredAt(r, corners_at, more);
     if (!cornered) break;
     corners_at.insert(corners_at.end(), more.begin(), more.end());
-    if (cornered->out_of_time || (!cornered->g2.usable() && r.g2.usable()) ||
-        cornered->quality.max_dev > std::max(kCorneredMiss * cornered->tolerance, r.quality.max_dev) ||
-        strays(*cornered) ||
-        !(cornered->quality.max_abs_kappa < r.quality.max_abs_kappa))
+    if (!mendsTheBend(*cornered) ||
+        cornered->quality.max_dev > std::max(kCorneredMiss * cornered->tolerance, r.quality.max_dev))
       break;
     r = std::move(*cornered);
   }
@@ -703,9 +707,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   if (mendable(r)) {
     FitResult strict =
         fitOnce(stroke, options, hook_tolerance, RadiusBound::kStrict, start, budget, corners_at, first_tolerance);
-    if ((strict.g2.usable() || !r.g2.usable()) && !strict.out_of_time &&
-        strict.quality.max_abs_kappa < r.quality.max_abs_kappa && !strays(strict))
-      r = std::move(strict);
+    if (mendsTheBend(strict)) r = std::move(strict);
   }
   r.timings.total_ms = msSince(start);
   return r;
