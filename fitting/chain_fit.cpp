@@ -84,6 +84,9 @@ constexpr double kAdmissible = 1e-7;
 // snapToJoints takes a chain as ending where it should, or a closed one as closed, when
 // the gaps (position, fraction of its length; tangent, radians) are below this.
 constexpr double kClosed = 1e-10;
+// A held start's curvature this close to the bound on curvature (relative) is on it: the
+// rounding of the units between two fits.
+constexpr double kBoundRounding = 1e-12;
 
 inline double valueOf(double x) { return x; }
 inline double valueOf(const Jet& x) { return x.a; }
@@ -1350,7 +1353,9 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     }
     const double value = std::copysign(std::clamp(std::abs(k), floor, ceiling), k);
     if (options.held_start && kappa_unknown.empty()) {
-      if (value != k) return refuse("the held start's curvature is beyond the bound on curvature");
+      // (a chain fitted before this one under the same bound ends on it to rounding: its
+      // curvature, rescaled to this fit's units, can come out an ulp or two above it)
+      if (std::abs(k) > ceiling * (1.0 + kBoundRounding)) return refuse("the held start's curvature is beyond the bound on curvature");
       kappa_unknown.push_back(add(value, value, value, kMaxRelativeKappaStep * std::abs(value)));
       continue;
     }

@@ -314,6 +314,25 @@ TEST(ChainFit, AHeldStartKeepsItsTangentAndCurvature) {
   EXPECT_LT(maxDistance(r.segments, points), 1e-5 * 150.0);
 }
 
+// A held start on the bound on curvature, as the chain fitted before it ends there: in
+// this fit's units it can come out an ulp or two above the bound (a walked stroke's piece
+// was refused so, and its part kept a kinked chain). It is held on the bound; one
+// clearly above it is refused.
+TEST(ChainFit, AHeldStartOnTheBoundToRoundingIsHeldThere) {
+  const std::vector<LaSegment> truth = buildChain({5, -3}, 0.2, 0.02, {{0.5, 60.0, 0.01}, {-0.5, 55.0, 0.015}});
+  std::vector<Vec2> points = sampleChain(truth, 100, 0.0, 5);
+  points.insert(points.begin(), truth.front().start());
+  ChainFitOptions options;
+  options.fix_start = true;
+  options.max_curvature = 0.02;
+  options.held_start = ChainFitOptions::HeldStart{truth.front().theta0(), 0.02 * (1.0 + 4e-16)};
+  const ChainFitResult r = fitChain(truth, points, {}, options);
+  ASSERT_NE(r.report.status, SolveStatus::kBadInput) << r.report.message;
+  EXPECT_NEAR(r.segments.front().kappaStart(), 0.02, 1e-15);
+  options.held_start->kappa = 0.02 * 1.001;
+  EXPECT_EQ(fitChain(truth, points, {}, options).report.status, SolveStatus::kBadInput);
+}
+
 // A held start is a fixed one: its position is the first point.
 TEST(ChainFit, RefusesAHeldStartThatIsNotFixed) {
   const std::vector<LaSegment> chain = buildChain({0, 0}, 0.0, 0.01, {{0.5, 60.0, 0.02}});
