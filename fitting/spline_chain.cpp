@@ -89,26 +89,51 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
   // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
   // then follows the spline's joints instead of drifting with its curvature errors.
   if (from) kappa[0] = from->kappa;
-  std::vector<LaSegment> chain;
-  Vec2 start = from ? from->point : spline.point(spline.wrap(spans.front().t0));
-  double theta = from ? from->theta : splineTangentAngle(spline, spline.wrap(spans.front().t0));
-  for (std::size_t i = 0; i < n; ++i) {
-    // (out of time: no chain; a hostile stroke's shots, each end of a segment with a cusp
-    // placed to 1e-10 of its length, took seconds past the budget)
-    if (budget.spent()) return {};
-    const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
-    const bool free_end = kappa[(i + 1) % joints] != 0.0;
-    const double end_sign = sign(turning[i]);
-    const Vec2 target = spline.point(spline.wrap(spans[i].t1));
-    const bool zero_end = k0 == 0.0 || !free_end;
-    const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
-    const double k1 = free_end ? kappa[(i + 1) % joints] : 0.0;
-    const auto seg = shootSegment(turning[i], start, theta, k0, free_end ? std::copysign(std::abs(k1), end_sign) : 0.0,
-                                  zero_end ? -1.0 : kStage7StartAlpha, lo, hi, target);
-    if (!seg) return {};
-    chain.push_back(*seg);
-    start = chain.back().end();
-    theta = chain.back().theta(chain.back().length());
+  // (the chain with `turning`, and the largest miss of its segments' ends from their
+  // split points; empty where some segment has no LA shot)
+  double miss = 0.0;
+  auto shoot = [&](const std::vector<double>& turns) {
+    std::vector<LaSegment> chain;
+    miss = 0.0;
+    Vec2 start = from ? from->point : spline.point(spline.wrap(spans.front().t0));
+    double theta = from ? from->theta : splineTangentAngle(spline, spline.wrap(spans.front().t0));
+    for (std::size_t i = 0; i < n; ++i) {
+      // (out of time: no chain; a hostile stroke's shots, each end of a segment with a cusp
+      // placed to 1e-10 of its length, took seconds past the budget)
+      if (budget.spent()) return std::vector<LaSegment>{};
+      const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
+      const bool free_end = kappa[(i + 1) % joints] != 0.0;
+      const double end_sign = sign(turns[i]);
+      const Vec2 target = spline.point(spline.wrap(spans[i].t1));
+      const bool zero_end = k0 == 0.0 || !free_end;
+      const double hi = zero_end ? std::min(kInflectionAlphaCap, max_alpha) : max_alpha, lo = std::min(min_alpha, hi);
+      const double k1 = free_end ? kappa[(i + 1) % joints] : 0.0;
+      const auto seg = shootSegment(turns[i], start, theta, k0, free_end ? std::copysign(std::abs(k1), end_sign) : 0.0,
+                                    zero_end ? -1.0 : kStage7StartAlpha, lo, hi, target);
+      if (!seg) return std::vector<LaSegment>{};
+      chain.push_back(*seg);
+      start = chain.back().end();
+      theta = chain.back().theta(chain.back().length());
+      miss = std::max(miss, (start - target).norm());
+    }
+    return chain;
+  };
+  std::vector<LaSegment> chain = shoot(turning);
+  // A held start's tangent off the spline's: every segment turning as the spline does,
+  // the whole chain is turned by that angle, and its shots curl back towards the split
+  // points (walked strokes' pieces looped hundreds of pixels off). The first segment
+  // taking up the turn onto the spline's tangent is tried too (not where it would turn
+  // it against its start's curvature); the chain whose segments end nearer their split
+  // points is kept (a large turn can be too much for one segment to take up).
+  if (from) {
+    std::vector<double> turned = turning;
+    turned[0] += wrapAngle(splineTangentAngle(spline, spline.wrap(spans.front().t0)) - from->theta);
+    if (turned[0] != turning[0] && sign(turned[0]) == sign(turning[0]) &&
+        (from->kappa == 0.0 || sign(from->kappa) == sign(turned[0]))) {
+      const double first_miss = chain.empty() ? INFINITY : miss;
+      std::vector<LaSegment> other = shoot(turned);
+      if (!other.empty() && miss < first_miss) chain = std::move(other);
+    }
   }
   return chain;
 }
