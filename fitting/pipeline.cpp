@@ -310,7 +310,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
         if (polishInPieces(pieces, part, context)) {
           const double worst_pieces = worstOf(pieces, part), worst = worstOf(fit, part);
           const bool sound = pieces.stray <= std::max(kStrayWarning * r.tolerance, fit.stray);
-          if (sound && (worst_pieces <= worst || worst_pieces <= kAstrayFit * r.tolerance)) fit = std::move(pieces);
+          // (the pieces are G2: over a kinked chain, G2 comes first, as among a part's starts)
+          if (sound && (!fit.g2.usable() || worst_pieces <= worst || worst_pieces <= kAstrayFit * r.tolerance))
+            fit = std::move(pieces);
         }
         r.timings.polish_ms += msSince(tp);
       }
@@ -648,13 +650,14 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // (a refit that strays further than the warning's bound and than the curve it would
   // replace: a loop where the stroke has none is no mend for a tight bend)
   auto strays = [&](const FitResult& f) { return f.stray > std::max(kStrayWarning * f.tolerance, r.stray); };
-  // (a refit that mends a tight bend: in time, bending less, not straying, and G2 where
-  // the curve is; a refit with a kink replaces only a curve with one: past stage 7's room,
-  // a walked stroke's kinked curve 3.3 tolerances off stayed so, where the refit was 1.2
-  // off and the next one G2)
+  // (a refit that mends a tight bend: in time, not straying, and G2 where the curve is
+  // kinked, else bending less; a refit with a kink replaces only a curve with one: past
+  // stage 7's room, a walked stroke's kinked curve 3.3 tolerances off stayed so, where the
+  // refit was 1.2 off and the next one G2)
+  auto mendsTheKink = [&](const FitResult& f) { return f.g2.usable() && !r.g2.usable(); };
   auto mendsTheBend = [&](const FitResult& f) {
     return !f.out_of_time && (f.g2.usable() || !r.g2.usable()) && !strays(f) &&
-           f.quality.max_abs_kappa < r.quality.max_abs_kappa;
+           (mendsTheKink(f) || f.quality.max_abs_kappa < r.quality.max_abs_kappa);
   };
   std::vector<Vec2> corners_at;
   // (a miss by the stray alone is fitted again only where some joint is on the bound, as
@@ -693,8 +696,8 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     std::optional<FitResult> cornered = corneredAt(r, corners_at, more);
     if (!cornered) break;
     corners_at.insert(corners_at.end(), more.begin(), more.end());
-    if (!mendsTheBend(*cornered) ||
-        cornered->quality.max_dev > std::max(kCorneredMiss * cornered->tolerance, r.quality.max_dev))
+    if (!mendsTheBend(*cornered) || (!mendsTheKink(*cornered) && cornered->quality.max_dev >
+                                                                       std::max(kCorneredMiss * cornered->tolerance, r.quality.max_dev)))
       break;
     r = std::move(*cornered);
   }
