@@ -563,14 +563,17 @@ TEST(FitDataRegression, ATightBendWhereNoCornerCanGoGivesWayToTheBound) {
 // no corner), 2.5 tolerances off, and bent 4 times tighter than the tolerance. The fit
 // again with corners at its tight bends was closer and bent less, but kinked as well, and
 // was refused for the kink; a rerun with a kink now replaces a curve with one, and the
-// next round's rerun is G2, bends no tighter than the tolerance and is 1.2 tolerances off.
+// next round's rerun was G2, bent no tighter than the tolerance and was 1.2 tolerances
+// off. Since stage 7's G2 pieces replace a kinked part's chain however far off (G2 before
+// the deviation, af305ef), the first fit is G2 already, 2.6 tolerances off (warned), and
+// bends no tighter: the guarantees are what this test keeps.
 TEST(FitDataRegression, AKinkedCurvesRerunWithCornersReplacesItWhereItIsBetter) {
   const std::vector<Stroke> all = readStrokes(kData / "strokes/omniglot_small1_sample/csv/Early_Aramaic/character09/0259_07.csv");
   ASSERT_FALSE(all.empty());
   const FitResult r = fitStroke(test::handedOver(all[0], test::HandedOver::kWalked), {});
   expectG2(r);
   EXPECT_GE(r.quality.min_radius, r.tolerance / kTighterThanTolerance);
-  EXPECT_LE(r.quality.max_dev, 1.5 * r.tolerance);
+  EXPECT_LE(r.quality.max_dev, 3.0 * r.tolerance);
 }
 
 // Omniglot Balinese 0112_07's third stroke walked by a slow mouse: past stage 7's room its
