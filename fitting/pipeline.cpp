@@ -300,6 +300,17 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
           fit = std::move(paper);
         }
       }
+      // A closed part's chain that still has gaps: stage 7's fit of it without its choice
+      // of segments, past the room (stage 7 in pieces fits open parts only), kept where it
+      // is G2 and strays no further. A walked closed stroke of 59 segments: kinked, 1.3
+      // tolerances off, in 21 ms; G2, 1.9 off, in 1.1 s.
+      if (part.closed && !fit.g2.usable()) {
+        PartFit whole = fit;
+        polish(whole, false);
+        worstOf(whole, part);  // (measures its stray)
+        worstOf(fit, part);
+        if (whole.g2.usable() && whole.stray <= std::max(kStrayWarning * r.tolerance, fit.stray)) fit = std::move(whole);
+      }
       // Where that leaves gaps, or the chain bends tighter than the tolerance, stage 7 in
       // pieces (an open part's, at a cost that grows with its pieces): kept where it
       // strays no further and is no further from the points, or within twice the

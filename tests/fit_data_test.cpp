@@ -606,6 +606,21 @@ TEST(FitDataRegression, AG2RefitReplacesAKinkedCurveThatBendsLess) {
   EXPECT_GE(r.quality.min_radius, r.tolerance / kTighterThanTolerance);
 }
 
+// Omniglot Early Aramaic 0259_01's first stroke walked along its polyline at 800 pixels:
+// a closed part of 59 segments, past both of stage 7's rooms, kept the kinked chain of
+// stages 1-6 (stage 7 in pieces fits open parts only). Stage 7's fit of that chain
+// without its choice of segments, past the room, makes it G2.
+TEST(FitDataRegression, AClosedPartPastBothRoomsComesBackG2) {
+  const std::vector<Stroke> all = readStrokes(kData / "strokes/omniglot_small1_sample/csv/Early_Aramaic/character09/0259_01.csv");
+  ASSERT_FALSE(all.empty());
+  const FitResult r = fitStroke(test::walkedByPixels(all[0], 800.0, true), {});
+  ASSERT_TRUE(r.over_polish_limit) << "the stroke fits within stage 7's room: this test shows nothing";
+  ASSERT_TRUE(r.curve.closed) << "the stroke is no closed part: this test shows nothing";
+  expectG2(r);
+  EXPECT_GE(r.quality.min_radius, r.tolerance / kTighterThanTolerance);
+  EXPECT_LE(r.quality.max_dev, 2.0 * r.tolerance);
+}
+
 // No file of a fittable kind lies outside the data sets above (new data is not skipped
 // silently), and the sets hold what SOURCES.md says they hold.
 TEST(FitDataFiles, EveryFileBelongsToADataSet) {
