@@ -208,12 +208,21 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
   std::size_t polish_room = options.max_polish_segments, repair_room = options.max_polish_segments;
-  // The larger of a part's chain's deviation from its points and its stray (the curve
-  // going where the stroke did not: a loop between two points), each measured once.
+  // A part's chain's stray (the curve going where the stroke did not: a loop between two
+  // points), measured once.
+  auto strayOfFit = [&](PartFit& f, const Part& part) {
+    if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
+    return f.stray;
+  };
+  // The larger of a part's chain's deviation from its points and its stray, each measured once.
   auto worstOf = [&](PartFit& f, const Part& part) {
     if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
-    if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
-    return std::max(f.max_dev, f.stray);
+    return std::max(f.max_dev, strayOfFit(f, part));
+  };
+  // (a refit of a part's chain past stage 7's room strays no further than the warning's
+  // bound and that chain)
+  auto straysNoFurther = [&](PartFit& refit, PartFit& f, const Part& part) {
+    return strayOfFit(refit, part) <= std::max(kStrayWarning * r.tolerance, strayOfFit(f, part));
   };
   // A one-LA-segment fit that misses the tolerance (oneSegmentPart) is kept where the
   // chains of several miss it by more (`others`: their largest deviation or stray).
@@ -296,20 +305,18 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
         if (fit.segments.size() <= repair_room) {
           repair_room -= fit.segments.size();
           polish(fit, false);
-        } else if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) {
-          fit = std::move(paper);
+        } else {
+          if (PartFit paper = fitPart(part, context, false); paper.g2.usable()) fit = std::move(paper);
+          // A closed part's chain that still has gaps: that fit past the room (stage 7 in
+          // pieces fits open parts only), kept where it is G2 and strays no further. A
+          // walked closed stroke of 59 segments: kinked, 1.3 tolerances off, in 21 ms; G2,
+          // 1.9 off, in 1.1 s.
+          if (part.closed && !fit.g2.usable()) {
+            PartFit whole = fit;
+            polish(whole, false);
+            if (whole.g2.usable() && straysNoFurther(whole, fit, part)) fit = std::move(whole);
+          }
         }
-      }
-      // A closed part's chain that still has gaps: stage 7's fit of it without its choice
-      // of segments, past the room (stage 7 in pieces fits open parts only), kept where it
-      // is G2 and strays no further. A walked closed stroke of 59 segments: kinked, 1.3
-      // tolerances off, in 21 ms; G2, 1.9 off, in 1.1 s.
-      if (part.closed && !fit.g2.usable()) {
-        PartFit whole = fit;
-        polish(whole, false);
-        worstOf(whole, part);  // (measures its stray)
-        worstOf(fit, part);
-        if (whole.g2.usable() && whole.stray <= std::max(kStrayWarning * r.tolerance, fit.stray)) fit = std::move(whole);
       }
       // Where that leaves gaps, or the chain bends tighter than the tolerance, stage 7 in
       // pieces (an open part's, at a cost that grows with its pieces): kept where it
@@ -320,9 +327,9 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
         PartFit pieces = fit;
         if (polishInPieces(pieces, part, context)) {
           const double worst_pieces = worstOf(pieces, part), worst = worstOf(fit, part);
-          const bool sound = pieces.stray <= std::max(kStrayWarning * r.tolerance, fit.stray);
           // (the pieces are G2: over a kinked chain, G2 comes first, as among a part's starts)
-          if (sound && (!fit.g2.usable() || worst_pieces <= worst || worst_pieces <= kAstrayFit * r.tolerance))
+          if (straysNoFurther(pieces, fit, part) &&
+              (!fit.g2.usable() || worst_pieces <= worst || worst_pieces <= kAstrayFit * r.tolerance))
             fit = std::move(pieces);
         }
         r.timings.polish_ms += msSince(tp);
@@ -584,10 +591,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   r.timings.quality_ms = msSince(tq);
   // Said from the measured figures, whichever stage or start the curve came from.
   double stray = 0.0;  // (fitOne measured most parts already)
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    if (std::isnan(fits[k].stray)) fits[k].stray = strayOf(fits[k].segments, parts[k], diag);
-    stray = std::max(stray, fits[k].stray);
-  }
+  for (std::size_t k = 0; k < parts.size(); ++k) stray = std::max(stray, strayOfFit(fits[k], parts[k]));
   r.stray = stray;
   if (stray > kStrayWarning * r.tolerance)
     r.warnings.push_back("the curve strays up to " + std::to_string(stray) + " from the stroke, where no point is");

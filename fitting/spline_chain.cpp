@@ -89,19 +89,22 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
   // Newton on two unknowns, one at an inflection joint, numeric derivatives): the chain
   // then follows the spline's joints instead of drifting with its curvature errors.
   if (from) kappa[0] = from->kappa;
-  // (the chain with `turning`, and the largest miss of its segments' ends from their
-  // split points; empty where some segment has no LA shot)
-  double miss = 0.0;
-  auto shoot = [&](const std::vector<double>& turns) {
+  // The chain with `turns`, and the largest miss of its segments' ends from their split
+  // points (none where some segment has no LA shot).
+  struct Shot {
     std::vector<LaSegment> chain;
-    miss = 0.0;
+    double miss = INFINITY;
+  };
+  auto shoot = [&](const std::vector<double>& turns) {
+    Shot shot;
+    double miss = 0.0;
     Vec2 start = from ? from->point : spline.point(spline.wrap(spans.front().t0));
     double theta = from ? from->theta : splineTangentAngle(spline, spline.wrap(spans.front().t0));
     for (std::size_t i = 0; i < n; ++i) {
       // (out of time: no chain; a hostile stroke's shots, each end of a segment with a cusp
       // placed to 1e-10 of its length, took seconds past the budget)
-      if (budget.spent()) return std::vector<LaSegment>{};
-      const double k0 = i == 0 ? kappa[0] : chain.back().kappaEnd();
+      if (budget.spent()) return Shot{};
+      const double k0 = i == 0 ? kappa[0] : shot.chain.back().kappaEnd();
       const bool free_end = kappa[(i + 1) % joints] != 0.0;
       const double end_sign = sign(turns[i]);
       const Vec2 target = spline.point(spline.wrap(spans[i].t1));
@@ -110,15 +113,16 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
       const double k1 = free_end ? kappa[(i + 1) % joints] : 0.0;
       const auto seg = shootSegment(turns[i], start, theta, k0, free_end ? std::copysign(std::abs(k1), end_sign) : 0.0,
                                     zero_end ? -1.0 : kStage7StartAlpha, lo, hi, target);
-      if (!seg) return std::vector<LaSegment>{};
-      chain.push_back(*seg);
-      start = chain.back().end();
-      theta = chain.back().theta(chain.back().length());
+      if (!seg) return Shot{};
+      shot.chain.push_back(*seg);
+      start = seg->end();
+      theta = seg->theta(seg->length());
       miss = std::max(miss, (start - target).norm());
     }
-    return chain;
+    shot.miss = miss;
+    return shot;
   };
-  std::vector<LaSegment> chain = shoot(turning);
+  Shot shot = shoot(turning);
   // A held start's tangent off the spline's: every segment turning as the spline does,
   // the whole chain is turned by that angle, and its shots curl back towards the split
   // points (walked strokes' pieces looped hundreds of pixels off). The first segment
@@ -130,12 +134,11 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
     turned[0] += wrapAngle(splineTangentAngle(spline, spline.wrap(spans.front().t0)) - from->theta);
     if (turned[0] != turning[0] && sign(turned[0]) == sign(turning[0]) &&
         (from->kappa == 0.0 || sign(from->kappa) == sign(turned[0]))) {
-      const double first_miss = chain.empty() ? INFINITY : miss;
-      std::vector<LaSegment> other = shoot(turned);
-      if (!other.empty() && miss < first_miss) chain = std::move(other);
+      Shot other = shoot(turned);
+      if (other.miss < shot.miss) shot = std::move(other);
     }
   }
-  return chain;
+  return shot.chain;
 }
 
 }  // namespace
