@@ -1102,7 +1102,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   Eigen::MatrixXd cjac;
   double lambda = kInitialLambda;
   std::vector<int> active;  // the bounds the last step system held: the next one's start
-  ChainModel trial_model, corrected_model;
+  thread_local ChainModel trial_model, corrected_model;  // (their panels' storage kept from fit to fit)
   std::vector<ChainFoot> trial_feet, corrected_feet, held;
   std::vector<FootFrame> trial_frames, corrected_frames;
   Eigen::VectorXd trial_r, trial_c, corrected_r, corrected_c;
@@ -1419,7 +1419,9 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   Eigen::VectorXd x = Eigen::Map<Eigen::VectorXd>(x0.data(), layout.size);
   result.unknowns = layout.size;
 
-  ChainModel model;
+  // (its panels' storage kept from fit to fit, as minimize's trial models': a fresh
+  // model allocated a dozen vectors per segment)
+  thread_local ChainModel model;
   if (!buildModel(layout, x, true, model)) return refuse("the initial chain cannot be modelled");
   std::vector<ChainFoot> feet = initial_feet.empty() ? coarseFeet(model, points, ranges) : initial_feet;
 
