@@ -926,14 +926,18 @@ class ChainProblem {
 // model falls inwards is let go. Why not solve with every unknown free and clip the move
 // to the bounds: the clipped move breaks the linearized constraints the others were
 // solved for, and a fit started outside its constraints (a part between corners, a
-// closed chain) then refused every step and stopped where it started.
+// closed chain) then refused every step and stopped where it started. One system serves
+// all the tries of a fit: its matrices keep their storage from one to the next (a system
+// per try allocated a dozen small matrices and vectors).
 class StepSystem {
  public:
   // `active`: the bounds to hold first (empty: those x is at with the gradient outwards),
   // on return those held at the step; the previous step's set saves most rounds (below).
-  StepSystem(const Eigen::MatrixXd& a, const Eigen::VectorXd& g, const Eigen::MatrixXd& cj, const Eigen::VectorXd& x,
-             const Eigen::VectorXd& c, const Layout& layout, double lambda, std::vector<int>& active)
-      : p_(layout.size), m_(static_cast<int>(cj.rows())), cj_(cj) {
+  void compute(const Eigen::MatrixXd& a, const Eigen::VectorXd& g, const Eigen::MatrixXd& cj, const Eigen::VectorXd& x,
+               const Eigen::VectorXd& c, const Layout& layout, double lambda, std::vector<int>& active) {
+    p_ = layout.size;
+    m_ = static_cast<int>(cj.rows());
+    cj_ = &cj;
     h_ = a;
     const double floor = 1e-12 * std::max(1.0, a.diagonal().maxCoeff());
     for (int i = 0; i < p_; ++i) h_(i, i) += lambda * std::max(a(i, i), floor);
@@ -946,8 +950,10 @@ class StepSystem {
     // chain of 25 segments with many curvatures on the radius bound took 30 a step. From
     // the previous step's held set (d moving those unknowns onto their bounds), the
     // steps are the same and a few rounds find them.
-    std::vector<int> held(p_, 0);  // per unknown: -1 held at its lower bound, 1 at its upper, 0 free
-    Eigen::VectorXd d = Eigen::VectorXd::Zero(p_);
+    std::vector<int>& held = held_bounds_;  // per unknown: -1 held at its lower bound, 1 at its upper, 0 free
+    held.assign(p_, 0);
+    Eigen::VectorXd& d = move_;
+    d.setZero(p_);
     if (static_cast<int>(active.size()) == p_) {
       held = active;
       for (int i = 0; i < p_; ++i)
@@ -979,7 +985,8 @@ class StepSystem {
       }
       d = step_;
       if (std::all_of(held.begin(), held.end(), [](int h) { return h == 0; })) break;
-      const Eigen::VectorXd multiplier = h_ * step_ + g + cj_.transpose() * nu_;
+      multiplier_ = h_ * step_ + g + cj.transpose() * nu_;
+      const Eigen::VectorXd& multiplier = multiplier_;
       int release = -1;
       double worst = 0.0;
       for (int i = 0; i < p_; ++i) {
@@ -989,9 +996,9 @@ class StepSystem {
       if (release < 0) break;
       held[release] = 0;
     }
-    active = std::move(held);
+    active = held;
   }
-  // The move the constructor found (gradient g, constraint values c).
+  // The move compute() found (gradient g, constraint values c).
   const Eigen::VectorXd& step() const { return step_; }
   // The move for another gradient g and constraint values c on the same active set, the
   // held unknowns still (the geodesic acceleration's).
@@ -1013,12 +1020,13 @@ class StepSystem {
     for (int i = 0; i < p_; ++i)
       if (held[i] == 0) free_.push_back(i), held_[i] = 0.0;
     const int f = static_cast<int>(free_.size());
-    Eigen::MatrixXd h(f, f);
+    Eigen::MatrixXd& h = h_free_;
+    h.resize(f, f);
     for (int k = 0; k < f; ++k)
       for (int i = k; i < f; ++i) h(i, k) = h_(free_[i], free_[k]);  // (the lower triangle)
     llt_.compute(h);
     c_free_.resize(m_, f);
-    for (int i = 0; i < f; ++i) c_free_.col(i) = cj_.col(free_[i]);
+    for (int i = 0; i < f; ++i) c_free_.col(i) = cj_->col(free_[i]);
     if (m_ > 0 && llt_.info() == Eigen::Success) {
       h_inverse_ct_ = llt_.solve(c_free_.transpose());
       schur_.compute(c_free_ * h_inverse_ct_);
@@ -1037,7 +1045,7 @@ class StepSystem {
     // (the held moves enter the right-hand side; free entries of `held` are zero)
     const bool moves = held.any();  // (.any(): nonzero entries)
     const Eigen::VectorXd g_held = moves ? Eigen::VectorXd(g + h_ * held) : g;
-    const Eigen::VectorXd c_held = moves ? Eigen::VectorXd(c + cj_ * held) : c;
+    const Eigen::VectorXd c_held = moves ? Eigen::VectorXd(c + *cj_ * held) : c;
     Eigen::VectorXd b(f);
     for (int i = 0; i < f; ++i) b[i] = -g_held[free_[i]];
     Eigen::VectorXd move = llt_.solve(b);
@@ -1051,9 +1059,11 @@ class StepSystem {
     return step;
   }
 
-  int p_, m_;
-  Eigen::MatrixXd h_;
-  const Eigen::MatrixXd& cj_;
+  int p_ = 0, m_ = 0;
+  Eigen::MatrixXd h_, h_free_;  // A + lambda D; its rows and columns of the free unknowns
+  const Eigen::MatrixXd* cj_ = nullptr;
+  std::vector<int> held_bounds_;
+  Eigen::VectorXd move_, multiplier_;  // solve's d and the held unknowns' multipliers
   Eigen::VectorXd held_;  // the move of each held unknown (zero for a free one)
   Eigen::VectorXd step_, nu_;
   std::vector<int> free_;
@@ -1102,6 +1112,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   Eigen::MatrixXd cjac;
   double lambda = kInitialLambda;
   std::vector<int> active;  // the bounds the last step system held: the next one's start
+  StepSystem system;
   thread_local ChainModel trial_model, corrected_model;  // (their panels' storage kept from fit to fit)
   std::vector<ChainFoot> trial_feet, corrected_feet, held;
   std::vector<FootFrame> trial_frames, corrected_frames;
@@ -1115,7 +1126,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
     const Eigen::VectorXd g = jac.transpose() * r;
     bool accepted = false, converged = false;
     for (; lambda < kMaxLambda; lambda *= kLambdaGrowth) {
-      const StepSystem system(a, g, cjac, x, c, layout, lambda, active);
+      system.compute(a, g, cjac, x, c, layout, lambda, active);
       Eigen::VectorXd step = system.step();
       step *= capFactor(step, step_caps);
       {
