@@ -271,7 +271,9 @@ void panelGrid(const Law& law, const GridRule& rule, std::vector<double>& out) {
   // is graded finer, so that kappa changes by at most the grading squared per panel
   // (steep laws running into an inflection: alpha -0.05 puts kappa ~ (1 - u)^20).
   const double power = std::min(1.0, 2.0 * std::abs(law.alpha));
-  const double grading = std::pow(rule.grading, power), smallest = std::pow(rule.smallest, power);
+  // (x^1 is x: no call for the laws with |alpha| >= 1/2, a percent of the fits' instructions)
+  const double grading = power == 1.0 ? rule.grading : std::pow(rule.grading, power);
+  const double smallest = power == 1.0 ? rule.smallest : std::pow(rule.smallest, power);
   const double v_max = std::max(v0, v1), v_min = std::max(std::min(v0, v1), smallest * v_max);
   for (double v = grading * v_max; v > v_min; v *= grading) grid.push_back((v - v0) / (v1 - v0));
   if (std::min(v0, v1) == 0.0) grid.push_back((v_min - v0) / (v1 - v0));
@@ -684,7 +686,7 @@ struct ChainModel : ChainGeometry {
 // panels again.)
 void addDerivatives(const Layout& layout, const Eigen::VectorXd& x, ChainModel& m) {
   const std::size_t n = layout.segments;
-  m.jets.resize(n);
+  if (m.jets.size() < n) m.jets.resize(n);  // (never shrunk: see buildModel)
   m.columns.resize(n);
   m.factors.resize(n);
   m.pose_jacobian.assign(n + 1, PoseJacobian::Zero(3, layout.size));
@@ -727,7 +729,9 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
   m.closed = layout.closed;
   m.corner = layout.corner;
   m.laws.resize(n);
-  m.panels.resize(n);
+  // (never shrunk: a model is reused from fit to fit, and a shrink freed the storage of
+  // the panels a longer chain would fill again; those beyond the laws are unused)
+  if (m.panels.size() < n) m.panels.resize(n);
   m.rotations.resize(n);
   m.start.resize(n + 1);
   m.angle.resize(n + 1);
