@@ -375,7 +375,7 @@ inline void sinCos(const Jet& t, Jet& s, Jet& c) {
 // Gauss-Legendre where a panel ends at a zero end (kappa's slope may be infinite there)
 // or bends by more than a radian at an end (the derivatives then outgrow the rule).
 template <typename T>
-void buildPanels(const Law& law, Panels<T>& p) {
+void buildPanels(const Law& law, Panels<T>& p, bool frames = true) {
   panelGrid(law, std::is_same_v<T, Jet> ? kJacobianGrid : kFittingGrid, p.grid);
   T alpha(law.alpha), y0(law.y0), y1(law.y1), length(law.length);
   if constexpr (std::is_same_v<T, Jet>) {
@@ -434,7 +434,8 @@ void buildPanels(const Law& law, Panels<T>& p) {
     p.x[k] = p.x[k - 1] + (h * length) * cx;
     p.y[k] = p.y[k - 1] + (h * length) * cy;
   }
-  if constexpr (std::is_same_v<T, double>) p.prepare(law.length);
+  if constexpr (std::is_same_v<T, double>)
+    if (frames) p.prepare(law.length);
 }
 
 Eigen::Matrix2d rotation(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix(); }
@@ -724,7 +725,9 @@ void addDerivatives(const Layout& layout, const Eigen::VectorXd& x, ChainModel& 
 }
 
 // Builds the model at x. False if a segment's unknowns leave the LA family or overflow.
-bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m) {
+// Without `frames`, the panels' interpolants are left for prepareFrames: a tried step
+// whose constraints' violation rejects it is never projected on.
+bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m, bool frames = true) {
   const std::size_t n = layout.segments;
   m.closed = layout.closed;
   m.corner = layout.corner;
@@ -744,7 +747,7 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
     const Law law = layout.law(x, i);
     m.laws[i] = law;
     Panels<double>& p = m.panels[i];
-    buildPanels(law, p);
+    buildPanels(law, p, frames);
     const double ex = p.x.back(), ey = p.y.back(), turn = p.theta.back();
     if (!std::isfinite(ex) || !std::isfinite(ey) || !std::isfinite(turn) || !(law.length > 0.0)) return false;
     m.total_length += law.length;
@@ -755,6 +758,11 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
   }
   if (derivatives) addDerivatives(layout, x, m);
   return true;
+}
+
+// The interpolants a model built without frames needs before points are projected on it.
+void prepareFrames(ChainModel& m) {
+  for (std::size_t i = 0; i < m.size(); ++i) m.panels[i].prepare(m.laws[i].length);
 }
 
 // Jacobian of the constraints (closure of a closed chain, a fixed end) by the unknowns;
@@ -866,7 +874,10 @@ class ChainProblem {
   void jacobian(const ChainModel& m, const std::vector<ChainFoot>& feet, const std::vector<FootFrame>& frames,
                 Jacobian& j, Eigen::MatrixXd& cj) const {
     const std::size_t n_points = points_.size();
-    j.setZero(static_cast<Eigen::Index>(rows()), layout_.size);
+    // (a point's row is written whole by `add`; the other rows are zeroed here: zeroing
+    // the whole matrix first was a percent of the fits' instructions)
+    j.resize(static_cast<Eigen::Index>(rows()), layout_.size);
+    j.bottomRows(static_cast<Eigen::Index>(rows() - n_points)).setZero();
     auto add = [&](Eigen::Index row, std::size_t k, const Vec2& unweighted) {
       const Vec2 direction = weights_[k] * unweighted;
       const ChainFoot& f = feet[k];
@@ -877,7 +888,7 @@ class ChainProblem {
       const Vec2 world = r * Vec2(px.a, py.a);
       const PoseJacobian& jp = m.pose_jacobian[f.segment];
       auto out = j.row(row);
-      out += direction.x() * jp.row(0) + direction.y() * jp.row(1) + direction.dot(Vec2(-world.y(), world.x())) * jp.row(2);
+      out = direction.x() * jp.row(0) + direction.y() * jp.row(1) + direction.dot(Vec2(-world.y(), world.x())) * jp.row(2);
       const Vec2 local = r.transpose() * direction;  // direction . (R dP) = (R^T direction) . dP
       for (int c = 0; c < 4; ++c) {
         const int col = m.columns[f.segment][c];
@@ -1148,7 +1159,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         if (2.0 * accel.norm() <= kMaxAcceleration * step.norm()) step += 0.5 * accel;
       }
       Eigen::VectorXd trial = (x + step).cwiseMax(layout.lower).cwiseMin(layout.upper);
-      if (!trial.allFinite() || !buildModel(layout, trial, false, trial_model)) continue;
+      if (!trial.allFinite() || !buildModel(layout, trial, false, trial_model, /*frames=*/false)) continue;
       // The second-order correction (below) of a step on a constrained chain, and a step
       // rejected before its points are projected where its violation alone outweighs the
       // merit at x, and its correction's too (the same verdicts: a quarter of the steps
@@ -1158,13 +1169,14 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
       if (layout.constraints() > 0) {
         problem.constraints(trial_model, trial_c);
         corrected = movedOntoConstraints(layout, trial, cjac, trial_c);
-        corrected_built = corrected.allFinite() && buildModel(layout, corrected, false, corrected_model);
+        corrected_built = corrected.allFinite() && buildModel(layout, corrected, false, corrected_model, /*frames=*/false);
         if (kConstraintMerit * trial_c.squaredNorm() >= phi) {
           if (!corrected_built) continue;
           problem.constraints(corrected_model, corrected_c);
           if (kConstraintMerit * corrected_c.squaredNorm() >= phi) continue;
         }
       }
+      prepareFrames(trial_model);
       trial_feet = feet;
       problem.evaluate(trial_model, trial_feet, trial_frames, trial_r, trial_c);
       if (trial_c.size() > 0) {
@@ -1175,6 +1187,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
         // constraints more than the step did.
         corrected_feet = trial_feet;
         if (corrected_built) {
+          prepareFrames(corrected_model);
           problem.evaluate(corrected_model, corrected_feet, corrected_frames, corrected_r, corrected_c);
           if (merit(corrected_r, corrected_c) < merit(trial_r, trial_c)) {
             trial = corrected;
