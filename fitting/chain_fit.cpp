@@ -1078,7 +1078,7 @@ class StepSystem {
   Eigen::MatrixXd h_, h_free_;  // A + lambda D; its rows and columns of the free unknowns
   const Eigen::MatrixXd* cj_ = nullptr;
   std::vector<int> held_bounds_;
-  Eigen::VectorXd move_, multiplier_;  // solve's d and the held unknowns' multipliers
+  Eigen::VectorXd move_, multiplier_;  // compute()'s d and the held unknowns' multipliers
   Eigen::VectorXd held_;  // the move of each held unknown (zero for a free one)
   Eigen::VectorXd step_, nu_;
   std::vector<int> free_;
