@@ -375,7 +375,7 @@ inline void sinCos(const Jet& t, Jet& s, Jet& c) {
 // Gauss-Legendre where a panel ends at a zero end (kappa's slope may be infinite there)
 // or bends by more than a radian at an end (the derivatives then outgrow the rule).
 template <typename T>
-void buildPanels(const Law& law, Panels<T>& p, bool frames = true) {
+void buildPanels(const Law& law, Panels<T>& p) {
   panelGrid(law, std::is_same_v<T, Jet> ? kJacobianGrid : kFittingGrid, p.grid);
   T alpha(law.alpha), y0(law.y0), y1(law.y1), length(law.length);
   if constexpr (std::is_same_v<T, Jet>) {
@@ -434,8 +434,6 @@ void buildPanels(const Law& law, Panels<T>& p, bool frames = true) {
     p.x[k] = p.x[k - 1] + (h * length) * cx;
     p.y[k] = p.y[k - 1] + (h * length) * cy;
   }
-  if constexpr (std::is_same_v<T, double>)
-    if (frames) p.prepare(law.length);
 }
 
 Eigen::Matrix2d rotation(double a) { return Eigen::Rotation2Dd(a).toRotationMatrix(); }
@@ -724,9 +722,14 @@ void addDerivatives(const Layout& layout, const Eigen::VectorXd& x, ChainModel& 
   }
 }
 
+// The interpolants of a model's panels, which points are projected on (Panels::frame).
+void prepareFrames(ChainModel& m) {
+  for (std::size_t i = 0; i < m.size(); ++i) m.panels[i].prepare(m.laws[i].length);
+}
+
 // Builds the model at x. False if a segment's unknowns leave the LA family or overflow.
-// Without `frames`, the panels' interpolants are left for prepareFrames: a tried step
-// whose constraints' violation rejects it is never projected on.
+// Without `frames`, the interpolants are left for prepareFrames: a tried step whose
+// constraints' violation rejects it is never projected on.
 bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m, bool frames = true) {
   const std::size_t n = layout.segments;
   m.closed = layout.closed;
@@ -747,7 +750,7 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
     const Law law = layout.law(x, i);
     m.laws[i] = law;
     Panels<double>& p = m.panels[i];
-    buildPanels(law, p, frames);
+    buildPanels(law, p);
     const double ex = p.x.back(), ey = p.y.back(), turn = p.theta.back();
     if (!std::isfinite(ex) || !std::isfinite(ey) || !std::isfinite(turn) || !(law.length > 0.0)) return false;
     m.total_length += law.length;
@@ -756,13 +759,9 @@ bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives
     const int corner = layout.corner_turn[i + 1];
     m.angle[i + 1] = m.angle[i] + turn + (corner >= 0 ? x[corner] : 0.0);
   }
+  if (frames) prepareFrames(m);
   if (derivatives) addDerivatives(layout, x, m);
   return true;
-}
-
-// The interpolants a model built without frames needs before points are projected on it.
-void prepareFrames(ChainModel& m) {
-  for (std::size_t i = 0; i < m.size(); ++i) m.panels[i].prepare(m.laws[i].length);
 }
 
 // Jacobian of the constraints (closure of a closed chain, a fixed end) by the unknowns;
@@ -965,7 +964,7 @@ class StepSystem {
     // chain of 25 segments with many curvatures on the radius bound took 30 a step. From
     // the previous step's held set (d moving those unknowns onto their bounds), the
     // steps are the same and a few rounds find them.
-    std::vector<int>& held = held_bounds_;  // per unknown: -1 held at its lower bound, 1 at its upper, 0 free
+    std::vector<int>& held = at_bound_;  // per unknown: -1 held at its lower bound, 1 at its upper, 0 free
     held.assign(p_, 0);
     Eigen::VectorXd& d = move_;
     d.setZero(p_);
@@ -1001,11 +1000,10 @@ class StepSystem {
       d = step_;
       if (std::all_of(held.begin(), held.end(), [](int h) { return h == 0; })) break;
       multiplier_ = h_ * step_ + g + cj.transpose() * nu_;
-      const Eigen::VectorXd& multiplier = multiplier_;
       int release = -1;
       double worst = 0.0;
       for (int i = 0; i < p_; ++i) {
-        const double inward = held[i] * multiplier[i];  // > 0: the model falls inwards
+        const double inward = held[i] * multiplier_[i];  // > 0: the model falls inwards
         if (inward > worst) worst = inward, release = i;
       }
       if (release < 0) break;
@@ -1077,8 +1075,8 @@ class StepSystem {
   int p_ = 0, m_ = 0;
   Eigen::MatrixXd h_, h_free_;  // A + lambda D; its rows and columns of the free unknowns
   const Eigen::MatrixXd* cj_ = nullptr;
-  std::vector<int> held_bounds_;
-  Eigen::VectorXd move_, multiplier_;  // compute()'s d and the held unknowns' multipliers
+  std::vector<int> at_bound_;          // compute()'s held set
+  Eigen::VectorXd move_, multiplier_;  // compute()'s d, and its multipliers of the bounds
   Eigen::VectorXd held_;  // the move of each held unknown (zero for a free one)
   Eigen::VectorXd step_, nu_;
   std::vector<int> free_;

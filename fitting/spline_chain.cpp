@@ -96,8 +96,7 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
     double miss = INFINITY;
   };
   auto shoot = [&](const std::vector<double>& turns) {
-    Shot shot;
-    double miss = 0.0;
+    Shot shot{{}, 0.0};
     Vec2 start = from ? from->point : spline.point(spline.wrap(spans.front().t0));
     double theta = from ? from->theta : splineTangentAngle(spline, spline.wrap(spans.front().t0));
     for (std::size_t i = 0; i < n; ++i) {
@@ -117,9 +116,8 @@ std::vector<LaSegment> shotChain(const CubicBSpline& spline, std::vector<PieceRe
       shot.chain.push_back(*seg);
       start = seg->end();
       theta = seg->theta(seg->length());
-      miss = std::max(miss, (start - target).norm());
+      shot.miss = std::max(shot.miss, (start - target).norm());
     }
-    shot.miss = miss;
     return shot;
   };
   Shot shot = shoot(turning);
