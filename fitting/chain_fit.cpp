@@ -965,7 +965,6 @@ class StepSystem {
     // the previous step's held set (d moving those unknowns onto their bounds), the
     // steps are the same and a few rounds find them.
     std::vector<int>& held = at_bound_;  // per unknown: -1 held at its lower bound, 1 at its upper, 0 free
-    held.assign(p_, 0);
     Eigen::VectorXd& d = move_;
     d.setZero(p_);
     if (static_cast<int>(active.size()) == p_) {
@@ -973,6 +972,7 @@ class StepSystem {
       for (int i = 0; i < p_; ++i)
         if (held[i] != 0) d[i] = (held[i] < 0 ? layout.lower[i] : layout.upper[i]) - x[i];
     } else {
+      held.resize(p_);
       for (int i = 0; i < p_; ++i)
         held[i] = x[i] <= layout.lower[i] && g[i] > 0.0 ? -1 : x[i] >= layout.upper[i] && g[i] < 0.0 ? 1 : 0;
     }
