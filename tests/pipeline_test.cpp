@@ -674,6 +674,26 @@ TEST_P(PipelineAlphaTest, AlphaMatchesTheTruthAsFarAsThePointsDetermineIt) {
   if (HasFailure()) std::printf("%s\n%s\n", describeTruth(truth).c_str(), describeFit(r).c_str());
 }
 
+// Stages 1-6 alone on a densely sampled exact sine at a tight tolerance (6,400 samples,
+// 0.05% of the diagonal): where the spline misses with its ends free, it is fitted
+// through the stroke's ends (SmoothingOptions::through_ends_on_miss), and the paper's
+// chain keeps the tolerance, G2 (with the ends free: 75 tolerances off, kinked).
+TEST(PipelinePaperOnly, ADenselySampledExactSineKeepsATightTolerance) {
+  Stroke stroke;
+  for (int k = 0; k < 6400; ++k) {
+    const double x = 60.0 * k / 6399.0;
+    stroke.samples.push_back({Vec2(x, 10.0 * std::sin(x / 10.0))});
+  }
+  FitOptions paper;
+  paper.polish = false;
+  paper.tolerance_fraction = 0.0005;
+  const FitResult r = fitStroke(stroke, paper);
+  ASSERT_FALSE(r.curve.pieces.empty());
+  EXPECT_LE(r.quality.max_dev, r.tolerance);
+  EXPECT_LT(r.quality.g1_gap, kG1Threshold);
+  EXPECT_LT(r.quality.g2_gap, kG2Threshold);
+}
+
 // Stage 7 against stages 1-6 alone (FitOptions::polish false: the paper's pipeline) on
 // every truth chain: it stays within the tolerance of the noise-free truth and G2, and
 // its alphas are, summed over the chains, much closer to the truth's (printed with the

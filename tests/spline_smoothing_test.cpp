@@ -441,43 +441,47 @@ TEST(SmoothWithBSpline, FarFromTheOriginAndRotatedStillWithinTolerance) {
   expectWithinTolerance(r, pts, kTol);
 }
 
-// ---------------------------------------------------------------------------------
-// Known defects of smoothWithBSpline, found while writing these tests. Disabled because
-// this branch adds tests only and does not touch the stage code; each returns (drop the
-// DISABLED_ prefix) when the defect it describes is fixed. Run them with
-// --gtest_also_run_disabled_tests.
-
-// Exact, densely sampled points of a sine wave, open: the tolerance is not met, and the
-// miss is always the first point. The spline's start falls short of it along the
-// tangent (400 points, tolerance 0.001: C(0) = (0.0099, 0.0099) for the point (0, 0),
-// whose foot parameter stays clamped at t = 0; the next points fit to 1e-5), the first
-// span holds fewer than kMinPointsToSplit (6) points and the first point's miss is taken
-// for a lone outlier (no neighbour on the same side), so no knot is added and the loop
-// stops with kIterationLimit.
-// Observed: 400 points, tolerance 0.005: kIterationLimit, max error 0.00614 (25 spans);
-// 800 points, tolerance 0.01: max error 0.0205 (24 spans). 100 points reach 1e-4.
-TEST(SmoothWithBSplineKnownDefect, DISABLED_DenselySampledExactSineMeetsATightTolerance) {
+// Exact, densely sampled points of a sine wave, open. With its ends free the spline fell
+// short of the first point along the tangent (400 points, tolerance 0.005: C(0) =
+// (0.0044, 0.0043) for the point (0, 0), whose foot stays at t = 0 while the next points'
+// feet slide along), the first span was halved down to one point, and the loop stopped
+// with kIterationLimit (max error 0.0061 with 25 spans; 800 points, tolerance 0.01:
+// 0.021 with 24). Through its end points it keeps the tolerance with fewer spans.
+TEST(SmoothWithBSpline, DenselySampledExactSineMeetsATightTolerance) {
   const Sine sine;
   for (const auto& [n, tol] : {std::pair{400, 0.005}, std::pair{800, 0.01}}) {
     SCOPED_TRACE(std::to_string(n) + " points, tolerance " + std::to_string(tol));
     const std::vector<Vec2> pts = sinePoints(sine, n, 0.0, 0);
-    expectWithinTolerance(smoothWithBSpline(pts, false, optionsFor(tol)), pts, tol);
+    const SmoothingResult r = smoothWithBSpline(pts, false, optionsFor(tol));
+    expectWithinTolerance(r, pts, tol);
+    EXPECT_LT(spanCount(r.spline), 24);
   }
 }
 
-// Very dense exact points (6400 on the same sine, spacing 0.01): the first spans empty
-// out, the spline's start runs away with only the 1e-14 jerk weight holding the empty
-// spans, and the result is far from the points. Observed at tolerance 0.03:
-// kIterationLimit, reported max error 18.1 (the sine's amplitude is 10; some foot
-// parameters sit on the runaway part), brute-force distance 0.67, 412 spans (more than
-// max_spans = 400), the spline's start at (19.3, 0.3) instead of near (0, 0).
-TEST(SmoothWithBSplineKnownDefect, DISABLED_VeryDenseExactSineStaysNearThePoints) {
+// Very dense exact points (6400 on the same sine, spacing 0.01). With its ends free the
+// first spans emptied out and the spline's start ran away with only the 1e-14 jerk weight
+// holding them (at tolerance 0.03: kIterationLimit, max error 16-18 with 400 spans or
+// more, the start at (19.3, 0.3) instead of near (0, 0)).
+TEST(SmoothWithBSpline, VeryDenseExactSineStaysNearThePoints) {
   const Sine sine;
   constexpr double kTol = 0.03;
   const std::vector<Vec2> pts = sinePoints(sine, 6400, 0.0, 0);
   const SmoothingResult r = smoothWithBSpline(pts, false, optionsFor(kTol));
   expectWithinTolerance(r, pts, kTol);
   EXPECT_LT((r.spline.point(r.spline.tMin()) - pts.front()).norm(), kTol);
+  EXPECT_LT(spanCount(r.spline), 40);
+}
+
+// Where the ends free keep the tolerance, they stay free: a noisy end point is not
+// passed through (holding it would bend the spline's end towards its noise).
+TEST(SmoothWithBSpline, EndsStayFreeWhereTheyKeepTheTolerance) {
+  const Sine sine;
+  constexpr double kSigma = 0.05, kTol = 5.0 * kSigma;
+  std::vector<Vec2> pts = sinePoints(sine, 300, kSigma, 11);
+  pts.front() += Vec2(0.0, 3.0 * kSigma);  // (an end sample further off than its neighbours)
+  const SmoothingResult r = smoothWithBSpline(pts, false, optionsFor(kTol, kSigma));
+  expectWithinTolerance(r, pts, kTol);
+  EXPECT_GT((r.spline.point(r.spline.tMin()) - pts.front()).norm(), kSigma);
 }
 
 // max_spans is not a cap: every bad span of a round is split when the count before the
