@@ -13,8 +13,9 @@
 // points (Newton on (C(t) - X) . C'(t) = 0). Once within tolerance, w is raised
 // (bisection on log w) until the residuals reach the noise level of the points, which
 // removes the curvature wiggles the noise made and keeps the curvature of clean data.
-// An open spline's ends are free; where that misses the tolerance, it is fitted again
-// through the first and last points (SmoothingOptions::through_ends_on_miss).
+// An open spline's ends are free; where that misses the tolerance (by more than
+// SmoothingOptions::through_ends_beyond times it), it is fitted again through the first
+// and last points, kept where that keeps the tolerance.
 
 #include <vector>
 
@@ -35,10 +36,11 @@ struct SmoothingOptions {
   double fairness_margin = 0.9;  // use at most this fraction of the tolerance when raising w
   double noise_sigma = 0.0;      // estimated noise of the points; w is raised only while the
                                  // rms residual stays below sigma sqrt(2) (0: never raised)
-  // An open spline that misses the tolerance with its ends free is fitted again through
-  // the first and last points, and the closer one kept (a free end can fall short of its
-  // point along the tangent, which no knot cures).
-  bool through_ends_on_miss = true;
+  // An open spline that misses the tolerance with its ends free, by more than this many
+  // tolerances, is fitted again through the first and last points, kept where that keeps
+  // the tolerance (a free end can fall short of its point along the tangent, which no
+  // knot cures; INFINITY: the ends stay free).
+  double through_ends_beyond = 1.0;
 };
 
 struct SmoothingResult {

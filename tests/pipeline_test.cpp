@@ -674,24 +674,42 @@ TEST_P(PipelineAlphaTest, AlphaMatchesTheTruthAsFarAsThePointsDetermineIt) {
   if (HasFailure()) std::printf("%s\n%s\n", describeTruth(truth).c_str(), describeFit(r).c_str());
 }
 
-// Stages 1-6 alone on a densely sampled exact sine at a tight tolerance (6,400 samples,
-// 0.05% of the diagonal): where the spline misses with its ends free, it is fitted
-// through the stroke's ends (SmoothingOptions::through_ends_on_miss), and the paper's
-// chain keeps the tolerance, G2 (with the ends free: 75 tolerances off, kinked).
-TEST(PipelinePaperOnly, ADenselySampledExactSineKeepsATightTolerance) {
+// 6,400 exact samples of a sine (amplitude 10, 60 long), fitted at 0.05% of the
+// diagonal: the B-spline with its ends free ran its start away, 400 tolerances off.
+Stroke denselySampledSine() {
   Stroke stroke;
   for (int k = 0; k < 6400; ++k) {
     const double x = 60.0 * k / 6399.0;
     stroke.samples.push_back({Vec2(x, 10.0 * std::sin(x / 10.0))});
   }
+  return stroke;
+}
+
+// Stages 1-6 alone: the spline is fitted through the stroke's ends where its free ends
+// miss (SmoothingOptions::through_ends_beyond), and the paper's chain keeps the
+// tolerance, G2 (from the spline astray: 75 tolerances off, kinked).
+TEST(PipelinePaperOnly, ADenselySampledExactSineKeepsATightTolerance) {
   FitOptions paper;
   paper.polish = false;
   paper.tolerance_fraction = 0.0005;
-  const FitResult r = fitStroke(stroke, paper);
+  const FitResult r = fitStroke(denselySampledSine(), paper);
   ASSERT_FALSE(r.curve.pieces.empty());
   EXPECT_LE(r.quality.max_dev, r.tolerance);
   EXPECT_LT(r.quality.g1_gap, kG1Threshold);
   EXPECT_LT(r.quality.g2_gap, kG2Threshold);
+}
+
+// The whole fit: stage 7 starts from the spline through the ends where its free ends
+// miss by far, and the sine comes back smooth: 5 segments, 2 reversals (from the spline
+// astray: a corner where none was drawn, 7 segments, 4 reversals, in half a second).
+TEST(PipelinePolish, ADenselySampledExactSineHasNoCorner) {
+  FitOptions options;
+  options.tolerance_fraction = 0.0005;
+  const FitResult r = fitStroke(denselySampledSine(), options);
+  ASSERT_FALSE(r.curve.pieces.empty());
+  EXPECT_EQ(r.quality.corners, 0);
+  EXPECT_LE(r.quality.max_dev, r.tolerance);
+  EXPECT_LE(r.quality.extrema_dense, 2);
 }
 
 // Stage 7 against stages 1-6 alone (FitOptions::polish false: the paper's pipeline) on
