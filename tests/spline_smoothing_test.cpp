@@ -472,6 +472,20 @@ TEST(SmoothWithBSpline, VeryDenseExactSineStaysNearThePoints) {
   EXPECT_LT(spanCount(r.spline), 40);
 }
 
+// Three times as long (2,400 points over three periods, tolerance 0.005): more control
+// points than the dense normal equations take, so the ends are held in the sparse ones.
+// With its ends free: 1.66 off with 400 spans, the start run away to (11.8, -1.8).
+TEST(SmoothWithBSpline, ALongDenselySampledExactSineMeetsATightTolerance) {
+  Sine sine;
+  sine.x_end = 180.0;
+  constexpr double kTol = 0.005;
+  const std::vector<Vec2> pts = sinePoints(sine, 2400, 0.0, 0);
+  const SmoothingResult r = smoothWithBSpline(pts, false, optionsFor(kTol));
+  expectWithinTolerance(r, pts, kTol);
+  EXPECT_GT(spanCount(r.spline), 45);  // (over kDenseLimit's 48 control points)
+  EXPECT_LT((r.spline.point(r.spline.tMin()) - pts.front()).norm(), kTol);
+}
+
 // Where the ends free keep the tolerance, they stay free: a noisy end point is not
 // passed through (holding it would bend the spline's end towards its noise).
 TEST(SmoothWithBSpline, EndsStayFreeWhereTheyKeepTheTolerance) {
