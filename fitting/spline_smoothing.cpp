@@ -158,7 +158,9 @@ std::vector<Vec2> controlOf(const Eigen::MatrixXd& x) {
 // the normal equations moved to the right-hand side.
 void holdEnds(Eigen::MatrixXd& a, Eigen::MatrixXd& rhs, const std::vector<Vec2>& pts) {
   const Eigen::Index last = a.rows() - 1;
-  for (const auto& [k, p] : {std::pair{Eigen::Index{0}, pts.front()}, std::pair{last, pts.back()}}) {
+  for (const auto& end : {std::pair{Eigen::Index{0}, pts.front()}, std::pair{last, pts.back()}}) {
+    const Eigen::Index k = end.first;
+    const Vec2& p = end.second;
     rhs -= a.col(k) * p.transpose();
     a.row(k).setZero();
     a.col(k).setZero();
@@ -168,7 +170,9 @@ void holdEnds(Eigen::MatrixXd& a, Eigen::MatrixXd& rhs, const std::vector<Vec2>&
 }
 void holdEnds(Eigen::SparseMatrix<double>& a, Eigen::MatrixXd& rhs, const std::vector<Vec2>& pts) {
   const Eigen::Index last = a.rows() - 1;
-  for (const auto& [k, p] : {std::pair{Eigen::Index{0}, pts.front()}, std::pair{last, pts.back()}}) {
+  for (const auto& end : {std::pair{Eigen::Index{0}, pts.front()}, std::pair{last, pts.back()}}) {
+    const Eigen::Index k = end.first;  // (no structured binding: clang 14 cannot capture one)
+    const Vec2& p = end.second;
     rhs -= Eigen::VectorXd(a.col(k)) * p.transpose();
     a.prune([k](Eigen::Index r, Eigen::Index c, double) { return r != k && c != k; });
     a.coeffRef(k, k) = 1.0;
