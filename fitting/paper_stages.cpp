@@ -287,8 +287,7 @@ PartFit fitPart(const Part& part, const FitContext& context, bool stage7_follows
   // sine, in half a second; from the spline through its ends, 5 segments and no corner,
   // in 30 ms. Stages 1-6 alone keep the tolerance more often through the ends at any
   // miss: 63 -> 61 shared strokes over it.)
-  const bool polishing = options.polish && options.g2 != G2Method::kOff;
-  so.through_ends_beyond = polishing ? kFarSplineMiss : 1.0;
+  so.through_ends_beyond = options.polishes() ? kFarSplineMiss : 1.0;
   SmoothingResult smooth = smoothWithBSpline(part.points, part.closed, so);
   timings.smoothing_ms += msSince(t0);
   out.smoothing = smooth.report;

@@ -204,7 +204,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   }
 
   std::vector<Part> parts = splitAtCorners(r.cleaned);
-  const bool polishing = options.polish && options.g2 != G2Method::kOff;  // (stage 7 makes the chain G2)
+  const bool polishing = options.polishes();  // (stage 7 makes the chain G2)
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
   std::size_t polish_room = options.max_polish_segments, repair_room = options.max_polish_segments;
@@ -634,7 +634,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // costs the tolerance, the fit without it, if that keeps the tolerance. (fitOnce does
   // so part by part; this is for what only the whole stroke shows: a part fitted after
   // a merge or across corners, a miss beyond kBoundsMiss, a stray.)
-  const bool polishing = options.polish && options.g2 != G2Method::kOff;
+  const bool polishing = options.polishes();
   // (missed: a point outside the tolerance, or the curve further than twice it, and a
   // sample step, from the stroke's polyline: a loop, or a corner run past its tip)
   auto misses = [](const FitResult& f) {

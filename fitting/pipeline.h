@@ -98,6 +98,8 @@ struct FitOptions {
   /// the app's live preview, which must keep up with the pen). Ignored with g2 = kOff
   /// (stage 7's chains are G2 by construction).
   bool polish = true;
+  /// Whether stage 7 runs: polish, and a G2 method to start it from.
+  bool polishes() const { return polish && g2 != G2Method::kOff; }
   /// Stage 7's segments get the standard error of their alpha (PieceReport::
   /// alpha_standard_error: how well the points determine it), at a Jacobian and a
   /// decomposition more per chain fit a selection keeps: 3.5% of the shared data's fit

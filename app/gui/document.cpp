@@ -100,7 +100,7 @@ std::size_t Document::addStroke(const Stroke& raw) {
 void Document::refit(DocumentStroke& s, bool provisional) const {
   s.touch();
   const bool edited = !s.alpha_overrides.empty() || !s.joint_overrides.empty() || !s.apex_overrides.empty();
-  s.provisional = provisional && !edited && options_.polish && options_.g2 != G2Method::kOff;
+  s.provisional = provisional && !edited && options_.polishes();
   if (!s.provisional) {
     fit(s);
     return;
