@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace la {
 namespace {
@@ -155,26 +156,20 @@ std::vector<Vec2> controlOf(const Eigen::MatrixXd& x) {
 
 // An open spline through its end points (`through_ends`): a clamped spline's first and
 // last control points are its ends, held at the first and last points, their columns of
-// the normal equations moved to the right-hand side.
-void holdEnds(Eigen::MatrixXd& a, Eigen::MatrixXd& rhs, const std::vector<Vec2>& pts) {
-  const Eigen::Index last = a.rows() - 1;
-  for (const auto& end : {std::pair{Eigen::Index{0}, pts.front()}, std::pair{last, pts.back()}}) {
-    const Eigen::Index k = end.first;
-    const Vec2& p = end.second;
-    rhs -= a.col(k) * p.transpose();
-    a.row(k).setZero();
-    a.col(k).setZero();
-    a(k, k) = 1.0;
-    rhs.row(k) = p.transpose();
-  }
-}
-void holdEnds(Eigen::SparseMatrix<double>& a, Eigen::MatrixXd& rhs, const std::vector<Vec2>& pts) {
+// the normal equations (dense or sparse) moved to the right-hand side.
+template <typename Matrix>
+void holdEnds(Matrix& a, Eigen::MatrixXd& rhs, const std::vector<Vec2>& pts) {
   const Eigen::Index last = a.rows() - 1;
   for (const auto& end : {std::pair{Eigen::Index{0}, pts.front()}, std::pair{last, pts.back()}}) {
     const Eigen::Index k = end.first;  // (no structured binding: clang 14 cannot capture one)
     const Vec2& p = end.second;
     rhs -= Eigen::VectorXd(a.col(k)) * p.transpose();
-    a.prune([k](Eigen::Index r, Eigen::Index c, double) { return r != k && c != k; });
+    if constexpr (std::is_same_v<Matrix, Eigen::SparseMatrix<double>>) {
+      a.prune([k](Eigen::Index r, Eigen::Index c, double) { return r != k && c != k; });
+    } else {
+      a.row(k).setZero();
+      a.col(k).setZero();
+    }
     a.coeffRef(k, k) = 1.0;
     rhs.row(k) = p.transpose();
   }
@@ -238,11 +233,16 @@ struct FixedParameterSystem {
   // Control points for jerk weight w (the same scaling as solveControl) and the distances
   // of the points from their (unmoved) parameters on that spline; false if singular.
   bool solve(double weight, const std::vector<Vec2>& pts, std::vector<Vec2>& control, std::vector<double>& dist) const {
-    Eigen::MatrixXd a = data + weight * static_cast<double>(pts.size()) * gram, b = rhs;
-    if (through_ends) holdEnds(a, b, pts);
-    const Eigen::LDLT<Eigen::MatrixXd> ldlt(a);
+    // (factored in place, and the right-hand side copied only to hold the ends: the
+    // fairness search solves this for every weight it tries)
+    Eigen::MatrixXd a = data + weight * static_cast<double>(pts.size()) * gram, held_rhs;
+    if (through_ends) {
+      held_rhs = rhs;
+      holdEnds(a, held_rhs, pts);
+    }
+    const Eigen::LDLT<Eigen::Ref<Eigen::MatrixXd>> ldlt(a);
     if (ldlt.info() != Eigen::Success) return false;
-    const Eigen::MatrixXd x = ldlt.solve(b);
+    const Eigen::MatrixXd x = ldlt.solve(through_ends ? held_rhs : rhs);
     if (!x.allFinite()) return false;
     control = controlOf(x);
     dist.resize(pts.size());
