@@ -96,6 +96,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   constexpr std::size_t kCurvatureWindows = 8;  // for the test of monotone curvature
   constexpr std::size_t kProfileSamples = 48;   // arc lengths the starts' turning is fitted at
   constexpr double kAlphaStep = 0.25;           // of the grid of alphas the starts are made for
+  constexpr int kCoarseAlphaSteps = 4;          // of kAlphaStep, of the profile's first search
   const std::vector<Vec2>& p = part.points;
   const std::size_t m = p.size();
   // (`span` from the median step, then from the chords it gives: where the noise is as
@@ -233,10 +234,30 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
     profile_s.push_back(middle(j));  // (a chord's direction is its middle's)
     profile_angle.push_back(angle[j]);
   }
+  // (the profile's sum of squares falls and rises once over the grid of alphas on the
+  // drawn spirals and the sampled segments: solved every kCoarseAlphaSteps grid steps
+  // first, then between the neighbours of the least of those; all 25 alphas of the grid
+  // were most of a one-segment fit's time, up to 15 ms on a drawn stroke)
   std::vector<std::pair<double, LaSegment>> profiled;
-  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += kAlphaStep)
-    if (auto fitted = profileSegment(alpha, length, p.front(), theta0, k0, k1, profile_s, profile_angle))
-      profiled.push_back({fitted->second, fitted->first});
+  const int grid_steps = static_cast<int>(std::floor((so.fit.max_alpha - so.fit.min_alpha) / kAlphaStep + 1e-9));
+  std::vector<bool> profiled_at(static_cast<std::size_t>(grid_steps) + 1, false);
+  int least_at = -1;
+  double least = INFINITY;
+  auto profileAt = [&](int j) {
+    if (j < 0 || j > grid_steps || profiled_at[static_cast<std::size_t>(j)]) return;
+    profiled_at[static_cast<std::size_t>(j)] = true;
+    const double alpha = so.fit.min_alpha + j * kAlphaStep;
+    auto fitted = profileSegment(alpha, length, p.front(), theta0, k0, k1, profile_s, profile_angle);
+    if (!fitted) return;
+    if (fitted->second < least) least = fitted->second, least_at = j;
+    profiled.push_back({fitted->second, fitted->first});
+  };
+  for (int j = 0; j < grid_steps; j += kCoarseAlphaSteps) profileAt(j);
+  profileAt(grid_steps);
+  if (least_at >= 0) {
+    const int coarse = least_at;
+    for (int j = coarse - kCoarseAlphaSteps + 1; j < coarse + kCoarseAlphaSteps; ++j) profileAt(j);
+  }
   keepClosest(profiled);
   starts.insert(starts.begin(), profiled.begin(), profiled.end());
   // (each start as it is, then with its end shot onto the last point: a spiral's far
