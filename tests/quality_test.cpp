@@ -198,7 +198,9 @@ TEST(StrayWithin, NeverSaysWithinWhereTheStrayIsBeyond) {
   // Wherever it says within, the dense measure agrees (limits from 0.01 to 6 over both).
   for (const auto* points : {&diameter, &on})
     for (double limit = 0.01; limit < 6.0; limit *= 1.1)
-      if (strayWithin(half, *points, 10.0, limit)) EXPECT_LE(strayFromPoints(half, *points, 10.0), limit) << limit;
+      if (strayWithin(half, *points, 10.0, limit)) {
+        EXPECT_LE(strayFromPoints(half, *points, 10.0), limit) << limit;
+      }
 }
 
 // strayBeyond is the dense measure where that exceeds the limit, else 0, whichever

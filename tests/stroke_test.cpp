@@ -779,9 +779,10 @@ TEST(CleanStrokeRealData, MmgLongFirstStepsStayUnlessTheyAreAHook) {
       for (const StrokeSample& sample : raw.samples) points.push_back(sample.p);
       const double tolerance = 0.005 * boundingBoxDiagonal(points);
       // (1.5: the clean-up's median step is that of the points it keeps)
-      if (c.trimmed_start > 0)
+      if (c.trimmed_start > 0) {
         EXPECT_LE(cut, std::max(6.0 * median, 4.0 * tolerance) * 1.5)
             << entry.path().filename() << " stroke " << k << ": " << describe(c);
+      }
     }
   }
   EXPECT_GE(jumps, 11u);  // SOURCES.md counts 11 of the 34 strokes
