@@ -239,8 +239,9 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // first, then between the neighbours of the least of those; all 25 alphas of the grid
   // were most of a one-segment fit's time, up to 15 ms on a drawn stroke)
   std::vector<std::pair<double, LaSegment>> profiled;
-  const int grid_steps = static_cast<int>(std::floor((so.fit.max_alpha - so.fit.min_alpha) / kAlphaStep + 1e-9));
-  std::vector<bool> profiled_at(static_cast<std::size_t>(grid_steps) + 1, false);
+  // (no grid, as no alpha, where the range is empty)
+  const int grid_steps = std::max(-1, static_cast<int>(std::floor((so.fit.max_alpha - so.fit.min_alpha) / kAlphaStep + 1e-9)));
+  std::vector<bool> profiled_at(static_cast<std::size_t>(grid_steps + 1), false);
   int least_at = -1;
   double least = INFINITY;
   auto profileAt = [&](int j) {
@@ -255,7 +256,7 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   for (int j = 0; j < grid_steps; j += kCoarseAlphaSteps) profileAt(j);
   profileAt(grid_steps);
   if (least_at >= 0) {
-    const int coarse = least_at;
+    const int coarse = least_at;  // (profileAt moves least_at on)
     for (int j = coarse - kCoarseAlphaSteps + 1; j < coarse + kCoarseAlphaSteps; ++j) profileAt(j);
   }
   keepClosest(profiled);
