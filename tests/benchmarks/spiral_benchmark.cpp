@@ -1,7 +1,7 @@
 // The whole pipeline (fitStroke, default options) on strokes sampled from one LA segment
 // of several turns: the spirals a fitter of LA curves must fit with one or a few segments
 // (issue 16). Each benchmark is one alpha; one iteration fits all its spirals once:
-// 1, 2.5 and 4 turns (curvature 0.004 to 0.08), 200, 700 and 2,000 points at equal arc
+// 1, 2.5, 4 and 5 turns (curvature 0.004 to 0.08), 200, 700 and 2,000 points at equal arc
 // length, noise-free and with Gaussian noise of 0.1 and 0.3 units (seeds 1 and 2). Its
 // counters: the spirals fitted, those that miss the tolerance, those of them whose true
 // spiral keeps it (truth_kept_missed: the true curve is within the tolerance of every
@@ -63,7 +63,7 @@ double distanceFromArchimedean(const Vec2& p, double theta, double turns) {
 
 std::vector<Spiral> archimedeanSpirals() {
   std::vector<Spiral> out;
-  for (double turns : {1.0, 2.5, 4.0})
+  for (double turns : {1.0, 2.5, 4.0, 5.0})
     for (int n : {200, 700, 2000})
       for (double noise : {0.0, 0.1, 0.3})
         for (unsigned seed : {1u, 2u}) {
@@ -84,7 +84,7 @@ std::vector<Spiral> archimedeanSpirals() {
 
 std::vector<Spiral> spiralsOf(double alpha) {
   std::vector<Spiral> out;
-  for (double turns : {1.0, 2.5, 4.0}) {
+  for (double turns : {1.0, 2.5, 4.0, 5.0}) {
     const LaSegment truth = LaSegment::withTurning(alpha, 2.0 * std::numbers::pi * turns, {0, 0}, 0.3, 0.004, 0.08);
     for (int n : {200, 700, 2000})
       for (double noise : {0.0, 0.1, 0.3})
