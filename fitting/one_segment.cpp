@@ -203,14 +203,18 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // (the alphas whose segments come nearest the points' length, the nearest first: a
   // spiral of several turns has local minima where a start lands on the wrong turn)
   // (the kOneSegmentStarts of `starts` that miss least, the least first)
-  auto keepClosest = [](std::vector<std::pair<double, LaSegment>>& starts) {
-    std::sort(starts.begin(), starts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  auto byMiss = [](const auto& a, const auto& b) { return a.first < b.first; };
+  auto keepClosest = [&](std::vector<std::pair<double, LaSegment>>& starts) {
+    std::sort(starts.begin(), starts.end(), byMiss);
     if (starts.size() > kOneSegmentStarts) starts.erase(starts.begin() + kOneSegmentStarts, starts.end());
   };
+  // (the grid of alphas, j = 0 .. grid_steps; none where the range is empty)
+  const int grid_steps = std::max(-1, static_cast<int>(std::floor((so.fit.max_alpha - so.fit.min_alpha) / kAlphaStep + 1e-9)));
+  auto gridAlpha = [&](int j) { return so.fit.min_alpha + j * kAlphaStep; };
   std::vector<std::pair<double, LaSegment>> starts;
-  for (double alpha = so.fit.min_alpha; alpha <= so.fit.max_alpha + 1e-9; alpha += kAlphaStep) {
+  for (int j = 0; j <= grid_steps; ++j) {
     try {
-      const LaSegment seg = LaSegment::withTurning(alpha, turning, p.front(), theta0, k0, k1);
+      const LaSegment seg = LaSegment::withTurning(gridAlpha(j), turning, p.front(), theta0, k0, k1);
       starts.push_back({std::abs(seg.length() - length), seg});
     } catch (const std::invalid_argument&) {
     }
@@ -239,24 +243,18 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   // first, then between the neighbours of the least of those; all 25 alphas of the grid
   // were most of a one-segment fit's time, up to 15 ms on a drawn stroke)
   std::vector<std::pair<double, LaSegment>> profiled;
-  // (no grid, as no alpha, where the range is empty)
-  const int grid_steps = std::max(-1, static_cast<int>(std::floor((so.fit.max_alpha - so.fit.min_alpha) / kAlphaStep + 1e-9)));
   std::vector<bool> profiled_at(static_cast<std::size_t>(grid_steps + 1), false);
-  int least_at = -1;
-  double least = INFINITY;
   auto profileAt = [&](int j) {
     if (j < 0 || j > grid_steps || profiled_at[static_cast<std::size_t>(j)]) return;
     profiled_at[static_cast<std::size_t>(j)] = true;
-    const double alpha = so.fit.min_alpha + j * kAlphaStep;
-    auto fitted = profileSegment(alpha, length, p.front(), theta0, k0, k1, profile_s, profile_angle);
-    if (!fitted) return;
-    if (fitted->second < least) least = fitted->second, least_at = j;
-    profiled.push_back({fitted->second, fitted->first});
+    if (auto fitted = profileSegment(gridAlpha(j), length, p.front(), theta0, k0, k1, profile_s, profile_angle))
+      profiled.push_back({fitted->second, fitted->first});
   };
   for (int j = 0; j < grid_steps; j += kCoarseAlphaSteps) profileAt(j);
   profileAt(grid_steps);
-  if (least_at >= 0) {
-    const int coarse = least_at;  // (profileAt moves least_at on)
+  if (!profiled.empty()) {
+    const auto least = std::min_element(profiled.begin(), profiled.end(), byMiss);
+    const int coarse = static_cast<int>(std::lround((least->second.alpha() - so.fit.min_alpha) / kAlphaStep));
     for (int j = coarse - kCoarseAlphaSteps + 1; j < coarse + kCoarseAlphaSteps; ++j) profileAt(j);
   }
   keepClosest(profiled);
