@@ -24,6 +24,9 @@ constexpr double kOnTheBound = 0.999;
 // A part whose chain with a joint on the bound misses by more than this many tolerances
 // misses for another reason (a scribble's): it is not fitted again without the bound.
 constexpr double kBoundsMiss = 4.0;
+// A part's one LA segment that misses only this many tolerances or less from its tight
+// end misses at a spiral's centre (see missesAtTightEnd in fitOnce).
+constexpr double kTightEndReach = 4.0;
 // A part's one LA segment for fewer extrema (fitOnce) is not fitted where the arc it
 // starts from passes this many tolerances from a point (from its circle: at most its
 // distance from the arc): on the shared data none kept started further off than 2.1.
@@ -235,6 +238,22 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     const double miss = worstOf(f, part);
     return miss > r.tolerance && miss <= kBoundsMiss * r.tolerance && largestKappa(f.segments) * r.tolerance > kOnTheBound;
   };
+  // One LA segment that misses the tolerance, by at most kBoundsMiss, only near its
+  // tight end (every point beyond the tolerance within kTightEndReach tolerances of it): a
+  // spiral's centre tighter than the bound on the radius lets it follow, which a corner
+  // there mends (fitStroke's corner at the farthest point), not a chain. (At 5% of the
+  // diagonal a noisy spiral of 2.5 turns spent 0.2 s on chains of 17-29 segments under
+  // the bound, before that corner kept the tolerance in 9 ms.)
+  auto missesAtTightEnd = [&](PartFit& f, const Part& part) {
+    const double miss = worstOf(f, part);
+    if (f.segments.size() != 1 || !(miss > r.tolerance) || miss > kBoundsMiss * r.tolerance) return false;
+    const LaSegment& seg = f.segments.front();
+    const Vec2 tight_end = std::abs(seg.kappaEnd()) >= std::abs(seg.kappaStart()) ? seg.end() : seg.start();
+    const std::vector<double> d = distancesToCurve(curveOf(f.segments), part.points, diag);
+    for (std::size_t k = 0; k < d.size(); ++k)
+      if (d[k] > r.tolerance && (part.points[k] - tight_end).norm() > kTightEndReach * r.tolerance) return false;
+    return true;
+  };
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& given) {
     FitContext context = given;
@@ -264,7 +283,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       // a tighter bend there, which no chain under the bound follows either, so the
       // chains from stages 2-6 are not tried: on a logarithmic spiral of three turns at a
       // tolerance of 8% they took 180 ms, to end 93 tolerances off.)
-      if (one && context.radius_bound == RadiusBound::kBoundThenFree && missesOnTheBound(*one, part))
+      if (one && context.radius_bound == RadiusBound::kBoundThenFree && (missesOnTheBound(*one, part) || missesAtTightEnd(*one, part)))
         return split && worstOf(*split, part) < worstOf(*one, part) ? std::move(*split) : std::move(*one);
       // (the chains from stages 2-6 are worth only what beats it, and get a few times the
       // work it took, as much where it misses by a little: a noisy spiral whose true
