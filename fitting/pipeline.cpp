@@ -232,27 +232,34 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   auto oneBeats = [&](PartFit& one, const Part& part, double others) {
     return one.g2.usable() && !(others <= r.tolerance) && worstOf(one, part) < others;
   };
+  // (a part's chain outside the tolerance by at most kBoundsMiss)
+  auto missesByLittle = [&](PartFit& f, const Part& part) {
+    const double miss = worstOf(f, part);
+    return miss > r.tolerance && miss <= kBoundsMiss * r.tolerance;
+  };
   // A part's chain that misses the tolerance, by at most kBoundsMiss, with a joint on the
   // bound of the radius (fitOneBounded fits it again without the bound).
   auto missesOnTheBound = [&](PartFit& f, const Part& part) {
-    const double miss = worstOf(f, part);
-    return miss > r.tolerance && miss <= kBoundsMiss * r.tolerance && largestKappa(f.segments) * r.tolerance > kOnTheBound;
+    return missesByLittle(f, part) && largestKappa(f.segments) * r.tolerance > kOnTheBound;
   };
-  // One LA segment that misses the tolerance, by at most kBoundsMiss, only near its
+  // One LA segment whose points miss the tolerance, by at most kBoundsMiss, only near its
   // tight end (every point beyond the tolerance within kTightEndReach tolerances of it): a
   // spiral's centre tighter than the bound on the radius lets it follow, which a corner
   // there mends (fitStroke's corner at the farthest point), not a chain. (At 5% of the
   // diagonal a noisy spiral of 2.5 turns spent 0.2 s on chains of 17-29 segments under
   // the bound, before that corner kept the tolerance in 9 ms.)
   auto missesAtTightEnd = [&](PartFit& f, const Part& part) {
-    const double miss = worstOf(f, part);
-    if (f.segments.size() != 1 || !(miss > r.tolerance) || miss > kBoundsMiss * r.tolerance) return false;
+    if (f.segments.size() != 1 || !missesByLittle(f, part)) return false;
     const LaSegment& seg = f.segments.front();
     const Vec2 tight_end = std::abs(seg.kappaEnd()) >= std::abs(seg.kappaStart()) ? seg.end() : seg.start();
     const std::vector<double> d = distancesToCurve(curveOf(f.segments), part.points, diag);
-    for (std::size_t k = 0; k < d.size(); ++k)
-      if (d[k] > r.tolerance && (part.points[k] - tight_end).norm() > kTightEndReach * r.tolerance) return false;
-    return true;
+    bool beyond = false;  // (a miss by the stray alone is not the points')
+    for (std::size_t k = 0; k < d.size(); ++k) {
+      if (!(d[k] > r.tolerance)) continue;
+      if ((part.points[k] - tight_end).norm() > kTightEndReach * r.tolerance) return false;
+      beyond = true;
+    }
+    return beyond;
   };
   // (`other_starts`: where stage 7's chain misses, stages 2-6's chains as starts too)
   auto fitOneWith = [&](const Part& part, bool other_starts, const FitContext& given) {
