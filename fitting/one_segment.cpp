@@ -281,9 +281,11 @@ std::optional<ChainFitResult> oneSegment(const Part& part, const SelectionOption
   }
   // The tries race: each gets kRaceIterations steps, and the closest of them (the first
   // within the tolerance ends the search) is fitted again from its start with all of
-  // kOneSegmentIterations. Fitted to the end, most tries of a spiral whose centre bends
-  // tighter than the tolerance (a loose one) wound off to a neighbouring turn, 3 to 7
-  // tolerances off, each at its full count of steps: 80 of a fit's 93 ms.
+  // kOneSegmentIterations, so that its fit is the one it had fitted to the end (going on
+  // from the race's end starts the damping afresh: another fit). Fitted to the end, most
+  // tries of a spiral whose centre bends tighter than the tolerance (a loose one) wound
+  // off to a neighbouring turn, 3 to 7 tolerances off, each at its full count of steps:
+  // 80 of a fit's 93 ms.
   ChainFitOptions race = co;
   race.max_iterations = kRaceIterations;
   std::optional<ChainFitResult> closest;

@@ -285,11 +285,12 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       r.timings.polish_ms += msSince(tp);
       if (one && one->max_dev <= r.tolerance) return std::move(*one);
       if (split && split->max_dev <= r.tolerance) return std::move(*split);
-      // (one segment that misses with a bend on the bound of the radius, by no more than
-      // kBoundsMiss: fitOneBounded fits the part again without the bound. The points need
-      // a tighter bend there, which no chain under the bound follows either, so the
-      // chains from stages 2-6 are not tried: on a logarithmic spiral of three turns at a
-      // tolerance of 8% they took 180 ms, to end 93 tolerances off.)
+      // (one segment that misses by no more than kBoundsMiss, with a bend on the bound of
+      // the radius, where fitOneBounded fits the part again without the bound, or only at
+      // its tight end, where fitStroke puts a corner. The points need a tighter bend
+      // there, which no chain under the bound follows either, so the chains from stages
+      // 2-6 are not tried: on a logarithmic spiral of three turns at a tolerance of 8%
+      // they took 180 ms, to end 93 tolerances off.)
       if (one && context.radius_bound == RadiusBound::kBoundThenFree && (missesOnTheBound(*one, part) || missesAtTightEnd(*one, part)))
         return split && worstOf(*split, part) < worstOf(*one, part) ? std::move(*split) : std::move(*one);
       // (the chains from stages 2-6 are worth only what beats it, and get a few times the
