@@ -48,9 +48,10 @@ void polishPart(PartFit& fit, const Part& part, const FitContext& context, bool 
 /// spline_chain.h) where the piece before it ends, its segments chosen and fitted to its
 /// points and to the next piece's first few with its start held there (position,
 /// tangent, curvature: G2 by construction), and kept up to its own points' last foot.
-/// The work grows with the pieces. True where it made the chain (fit updated as
-/// polishPart updates it); false, and the chain as it was, where a piece's start or fit
-/// is refused.
+/// The work grows with the pieces. Where `fit` has a kink and a piece's start or fit is
+/// refused, or the chain strays from the points, pieces of other sizes are tried too, the
+/// closest chain kept. True where it made a chain (fit updated as polishPart updates it);
+/// false, and the chain as it was, where no size did.
 bool polishInPieces(PartFit& fit, const Part& part, const FitContext& context);
 
 /// Stage 7's selection options: the tolerance less a margin, the alpha range and the
