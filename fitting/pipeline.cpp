@@ -170,8 +170,8 @@ std::size_t cornerNear(const CleanStroke& stroke, const Vec2& q) {
 // The whole pipeline, stage 7's radius bounded as `radius_bound` says, with corners also
 // where the points turn most near each of `corners_at` (cornerNear), and the tolerance
 // `first_tolerance` where this is a rerun (0: the first fit, whose tolerance is the one
-// asked for, raised to the points' noise floor); the time budget counts from `start`, and
-// `budget` (a share of the work, on the stroke's meter) may end the fit sooner.
+// asked for, raised to the points' noise floor); `budget` ends it: the user's deadline
+// (fitStroke's, counted from `start`) and a share of the work, on the stroke's meter.
 FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_tolerance, RadiusBound radius_bound,
                   Clock::time_point start, const Budget& budget, const std::vector<Vec2>& corners_at = {},
                   double first_tolerance = 0.0) {
@@ -195,9 +195,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   r.g2 = {SolveStatus::kConverged, 0, 0.0, "ok"};
   FitContext context{options, r.tolerance, noise, diag, r.timings};
   context.radius_bound = radius_bound;
-  context.budget = budget;
-  if (options.time_budget_ms > 0.0)
-    context.budget.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
+  context.budget = budget;  // (the user's deadline in it: fitStroke's)
 
   if (r.cleaned.straight) {
     fitStraight(r);
@@ -649,7 +647,10 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
                       std::to_string(options.max_points) + " (FitOptions::max_points; lafit --max-points raises it)");
   const double hook_tolerance = hookTolerance(stroke, options);
   WorkMeter work;
-  const Budget budget{.meter = &work};
+  // (the user's time budget, whichever fit spends it: the refits' shares keep its deadline)
+  Budget budget{.meter = &work};
+  if (options.time_budget_ms > 0.0)
+    budget.deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(options.time_budget_ms));
   FitResult r = fitOnce(stroke, options, hook_tolerance, RadiusBound::kBoundThenFree, start, budget);
   const double first_tolerance = r.tolerance;
   // A bend the points need tighter than the tolerance is a corner, which the clean-up
