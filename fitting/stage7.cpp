@@ -574,17 +574,19 @@ bool polishInPiecesOf(PartFit& fit, const Part& part, const FitContext& context,
 }  // namespace
 
 bool polishInPieces(PartFit& fit, const Part& part, const FitContext& context) {
-  auto stray = [&](const PartFit& f) { return strayOf(f.segments, part, context.diagonal); };
+  // (the stray kept in the fit: the caller measures the chain by it too)
+  auto worst = [&](PartFit& f) {
+    f.stray = strayOf(f.segments, part, context.diagonal);
+    return std::max(f.max_dev, f.stray);
+  };
   PartFit best = fit;
   bool made = polishInPiecesOf(best, part, context, kPieceSpans);
-  const double first_stray = made ? stray(best) : INFINITY;
-  double best_worst = made ? std::max(best.max_dev, first_stray) : INFINITY;
-  if (!fit.g2.usable() && first_stray > kStrayWarning * context.tolerance)
+  double best_worst = made ? worst(best) : INFINITY;
+  if (!fit.g2.usable() && !(made && best.stray <= kStrayWarning * context.tolerance))
     for (std::size_t spans : kOtherPieceSpans) {
       PartFit other = fit;
       if (!polishInPiecesOf(other, part, context, spans)) continue;
-      if (const double worst = std::max(other.max_dev, stray(other)); worst < best_worst)
-        best = std::move(other), best_worst = worst, made = true;
+      if (const double w = worst(other); w < best_worst) best = std::move(other), best_worst = w, made = true;
     }
   if (made) fit = std::move(best);
   return made;
