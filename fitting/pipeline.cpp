@@ -709,23 +709,45 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
     // bends no tighter than it, the fit without the bound is not needed. It would bend
     // tighter than the tolerance where the bound held, and the rounds below would make
     // those bends corners, a whole fit later (the shared data's slowest fit, a drawn
-    // star: 224 -> 176 ms, the same curve). A miss with no bend on the bound has its
-    // corner tried at the point farthest from the curve, then the fit without the bound:
-    // a part can miss with one segment that bends nowhere near the bound, kept over
-    // chains that bend tighter or stray (12 noisy samples: 1.25 tolerances off, where a
-    // corner at the free fit's tight bend keeps the tolerance).
-    std::vector<Vec2> on_bound = tightBends(r, kOnTheBound);
-    if (on_bound.empty() && r.quality.max_dev > r.tolerance) on_bound = {farthestPoint(r)};
+    // star: 224 -> 176 ms, the same curve). A miss with no bend on the bound, or whose
+    // corners there do not mend it, has its corner tried at the point farthest from the
+    // curve, then the fit without the bound: a part can miss with one segment that bends
+    // nowhere near the bound, kept over chains that bend tighter or stray (12 noisy
+    // samples: 1.25 tolerances off, where a corner at the free fit's tight bend keeps the
+    // tolerance), and a bend on the bound can be the fit's answer to a miss elsewhere (a
+    // noisy crossbar's chain bent on the bound beside its end hook, 2.3 tolerances off at
+    // a kink in its middle, where a corner keeps the tolerance, 0.20 off).
     // (a refit that ran out of its share of the work, not of the user's time, is kept as
     // one that did not where its chain, the best it found, keeps the tolerance, G2 and the
     // bound: a noisy spiral whose one segment missed the tolerance by 2% at its centre
     // came within it (0.97, 8 segments) with a corner there, past its share)
-    std::optional<FitResult> cornered = corneredAt(r, {}, on_bound);
-    const bool in_users_time = cornered && (!cornered->out_of_time || !budget.spent());
-    if (in_users_time && cornered->g2.usable() && !misses(*cornered) && !bendsTighterThanTolerance(*cornered)) {
+    auto mends = [&](const std::optional<FitResult>& f) {
+      const bool in_users_time = f && (!f->out_of_time || !budget.spent());
+      return in_users_time && f->g2.usable() && !misses(*f) && !bendsTighterThanTolerance(*f);
+    };
+    std::vector<Vec2> at = tightBends(r, kOnTheBound);
+    std::optional<FitResult> cornered = at.empty() ? std::nullopt : corneredAt(r, {}, at);
+    if (!mends(cornered) && r.quality.max_dev > r.tolerance) {
+      at = {farthestPoint(r)};
+      cornered = corneredAt(r, {}, at);
+      // (where that misses too, with a corner at its own farthest point as well: a noisy
+      // crossbar's farthest point was beside the kink that needed the corner, whose fit
+      // with both kept the tolerance, 0.53 off. Not under a cap on extrema, whose misses
+      // are the cap's: a drawn ellipse capped at 2 came back as 5 segments between two
+      // such corners, where it is the circle closest to its points.)
+      if (options.segmentation.max_extrema < 0 && cornered && !mends(cornered) &&
+          cornered->quality.max_dev > cornered->tolerance) {
+        const Vec2 next = farthestPoint(*cornered);
+        if (next != at.front()) {
+          at.push_back(next);
+          cornered = corneredAt(r, {}, at);
+        }
+      }
+    }
+    if (mends(cornered)) {
       r = std::move(*cornered);
       r.out_of_time = false;
-      corners_at = on_bound;
+      corners_at = at;
     } else if (options.segmentation.max_extrema < 0 || r.quality.max_dev <= kCappedMiss * r.tolerance) {
       FitResult free = fitOnce(stroke, options, hook_tolerance, RadiusBound::kFree, start, budget);
       if (!misses(free)) r = std::move(free);

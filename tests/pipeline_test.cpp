@@ -951,7 +951,11 @@ TEST(PipelineFairness, APointedArchsSidesAreArcsWhoseCurvatureNeverReverses) {
 // units: 12 samples, the first a pen-down hook. Fitted with the bound on the radius, it
 // missed the tolerance with a joint on the bound; fitted again without the bound it
 // missed too, so the curve kept the first miss (1.6 tolerances, warned). The bend on the
-// bound made a corner keeps the tolerance, and nothing bends tighter than it.
+// bound made a corner keeps the tolerance, and nothing bends tighter than it. (Where the
+// first fit bends on the bound beside the end hook instead, 2.3 tolerances off at the
+// kink in the middle, whose corner there does not mend, the corner at the point farthest
+// from the curve does; with glibc's FMA paths off that point is beside the kink, and the
+// corners at it and at its refit's farthest point do.)
 const std::vector<Vec2> kNoisyCrossbar = {{36.057, 99.816}, {58.523, 90.391}, {68.138, 86.135}, {71.919, 89.959},
                                           {79.402, 88.123}, {82.655, 85.613}, {87.014, 84.172}, {93.353, 83.209},
                                           {96.389, 83.349}, {103.054, 84.150}, {109.229, 83.541}, {108.211, 83.554}};
