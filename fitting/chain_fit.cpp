@@ -36,7 +36,7 @@ constexpr double kMaxAlphaStep = 1.0, kMaxRelativeKappaStep = 0.5, kMaxLogTurnin
 // length), and the grading of v ~ rho^alpha towards its small end (largest ratio of v
 // across a panel, down to a smallest v). Positions between panel ends are quintic
 // Hermite interpolants (position, tangent and curvature at both ends). On the fitting
-// grid they stay within ~1e-6 of the segment length of LaSegment's adaptive quadrature
+// grid they stay within ~2e-6 of the segment length of LaSegment's adaptive quadrature
 // (measured on the tests' laws: far below any noise, and a model build is cheap); the
 // Jacobian's grid is coarser still (derivatives need a few digits, not ten); distances
 // reported to the user come from the measuring grid, within ~1e-9.
@@ -203,6 +203,11 @@ class LawEvaluator {
       case ZeroEnd::kBoth: theta_u = kappa_u = T(0.0); return;
     }
   }
+  // d2kappa/du2, given kappa and its slope at u (not at a zero end): kappa is a power
+  // -1/alpha of a variable linear in u at every law, so kappa'' = (1 + alpha) kappa'^2 / kappa.
+  T kappaBow(const T& kappa, const T& slope) const {
+    return zero_ == ZeroEnd::kBoth ? T(0.0) : T((1.0 + alpha_) * slope * slope / kappa);
+  }
   // dkappa/du at u, given kappa there (not at a zero end: its slope may be infinite).
   T kappaSlope(double u, const T& kappa) const {
     switch (zero_) {
@@ -365,20 +370,28 @@ inline void sinCos(const Jet& t, Jet& s, Jet& c) {
   c = Jet(ca, -sa * t.v);
 }
 
-// The panels of a law. Positions by the Hermite rule on each panel,
+// The panels of a law, for the fit's model (doubles, on the fitting grid) or its Jacobian
+// (Jets, on the coarser Jacobian grid). Positions on each panel by a Hermite rule from the
+// tangent (cos, sin) of theta and its derivatives at the panel ends, which come from the
+// ends' theta, kappa and kappa's slopes (closed forms). The model's rule,
+//   integral over [0, 1] of f = 1/2 (f0 + f1) + 3/28 (f0' - f1') + 1/84 (f0'' + f1'')
+//                               + 1/1680 (f0''' - f1'''),
+// exact to degree 7, evaluates the law once a panel, at its end (the law's evaluations
+// are most of a fit's time). The Jacobian's rule takes the middle's value instead of the
+// third derivatives,
 //   integral over [0, 1] of f = 19/70 (f0 + f1) + 1/35 (f0' - f1') + 1/840 (f0'' + f1'')
 //                               + 16/35 f(1/2),
-// exact to degree 7: the tangent (cos, sin) of theta and its two derivatives at the panel
-// ends come from the ends' theta and kappa, which the panels keep anyway, so a panel
-// costs one more evaluation of the law, at its middle. (Gauss-Legendre with 3 nodes,
-// exact to degree 5, cost three, and the law's evaluations were most of a fit's time.)
-// Gauss-Legendre where a panel ends at a zero end (kappa's slope may be infinite there)
-// or bends by more than a radian at an end (the derivatives then outgrow the rule).
+// also exact to degree 7 and eight times closer: its panels turn by up to half a radian
+// and the first rule's Jacobian was too coarse for a steep law's fit to converge (alpha
+// 2.9, fitted back from off its truth, crawled to the iteration limit). Gauss-Legendre
+// with 3 nodes where a panel ends at a zero end (kappa's slope may be infinite there) or
+// bends by more than a radian at an end (the derivatives then outgrow the rules).
 template <typename T>
 void buildPanels(const Law& law, Panels<T>& p) {
-  panelGrid(law, std::is_same_v<T, Jet> ? kJacobianGrid : kFittingGrid, p.grid);
+  constexpr bool kJacobian = std::is_same_v<T, Jet>;
+  panelGrid(law, kJacobian ? kJacobianGrid : kFittingGrid, p.grid);
   T alpha(law.alpha), y0(law.y0), y1(law.y1), length(law.length);
-  if constexpr (std::is_same_v<T, Jet>) {
+  if constexpr (kJacobian) {
     alpha.v[kAlpha] = 1.0;
     y0.v[kLogKappaStart] = 1.0;
     y1.v[kLogKappaEnd] = 1.0;
@@ -395,8 +408,10 @@ void buildPanels(const Law& law, Panels<T>& p) {
   const auto& rule = gaussLegendre<kPanelNodes>();
   const std::size_t n = p.grid.size();
   for (auto* v : {&p.x, &p.y, &p.theta, &p.c, &p.s, &p.kappa}) v->resize(n);
-  thread_local std::vector<T> slope;  // dkappa/du at the panel ends (unset at a zero end)
+  // dkappa/du at the panel ends, and for doubles d2kappa/du2 (unset at a zero end)
+  thread_local std::vector<T> slope, bow;
   slope.resize(n);
+  bow.resize(n);
   p.x[0] = p.y[0] = T(0.0);
   auto atZeroEnd = [&](std::size_t k) {
     return (law.zero == ZeroEnd::kStart && k == 0) || (law.zero == ZeroEnd::kEnd && k + 1 == n);
@@ -404,11 +419,22 @@ void buildPanels(const Law& law, Panels<T>& p) {
   for (std::size_t k = 0; k < n; ++k) {
     evaluator.thetaAndKappa(p.grid[k], p.theta[k], p.kappa[k]);
     sinCos(p.theta[k], p.s[k], p.c[k]);
-    if (!atZeroEnd(k)) slope[k] = evaluator.kappaSlope(p.grid[k], p.kappa[k]);
+    if (!atZeroEnd(k)) {
+      slope[k] = evaluator.kappaSlope(p.grid[k], p.kappa[k]);
+      if constexpr (!kJacobian) bow[k] = evaluator.kappaBow(p.kappa[k], slope[k]);
+    }
     if (k == 0) continue;
     const double a = p.grid[k - 1], h = p.grid[k] - a;
     T cx(0.0), cy(0.0);
     const T bend0 = (h * length) * p.kappa[k - 1], bend1 = (h * length) * p.kappa[k];  // dtheta/dt at the ends
+    // (in t = (u - a) / h, with theta' = h L kappa, theta'' = h^2 L kappa_u and theta''' =
+    // h^3 L kappa_uu: (cos, sin)' = theta' (-sin, cos), (cos, sin)'' = -theta'^2 (cos, sin)
+    // + theta'' (-sin, cos), (cos, sin)''' = (theta'^3 - theta''') (sin, -cos)
+    // - 3 theta' theta'' (cos, sin))
+    const T& c0 = p.c[k - 1];
+    const T& s0 = p.s[k - 1];
+    const T& c1 = p.c[k];
+    const T& s1 = p.s[k];
     if (atZeroEnd(k - 1) || atZeroEnd(k) || abs(bend0) > T(1.0) || abs(bend1) > T(1.0)) {
       for (int g = 0; g < kPanelNodes; ++g) {
         T st, ct;
@@ -416,20 +442,25 @@ void buildPanels(const Law& law, Panels<T>& p) {
         cx += rule.weight[g] * ct;
         cy += rule.weight[g] * st;
       }
-    } else {
-      // (in t = (u - a) / h: (cos, sin)' = theta' (-sin, cos), (cos, sin)'' =
-      // -theta'^2 (cos, sin) + theta'' (-sin, cos), theta' = h L kappa, theta'' = h^2 L kappa_u)
+    } else if constexpr (kJacobian) {
       const T curl0 = (h * h) * length * slope[k - 1], curl1 = (h * h) * length * slope[k];
       T sm, cm;
       sinCos(theta(a + 0.5 * h), sm, cm);
-      const T& c0 = p.c[k - 1];
-      const T& s0 = p.s[k - 1];
-      const T& c1 = p.c[k];
-      const T& s1 = p.s[k];
       cx = (19.0 / 70.0) * (c0 + c1) + (1.0 / 35.0) * (bend1 * s1 - bend0 * s0) +
            (1.0 / 840.0) * (-bend0 * bend0 * c0 - curl0 * s0 - bend1 * bend1 * c1 - curl1 * s1) + (16.0 / 35.0) * cm;
       cy = (19.0 / 70.0) * (s0 + s1) + (1.0 / 35.0) * (bend0 * c0 - bend1 * c1) +
            (1.0 / 840.0) * (-bend0 * bend0 * s0 + curl0 * c0 - bend1 * bend1 * s1 + curl1 * c1) + (16.0 / 35.0) * sm;
+    } else {
+      const T curl0 = (h * h) * length * slope[k - 1], curl1 = (h * h) * length * slope[k];
+      const T twist0 = (h * h * h) * length * bow[k - 1], twist1 = (h * h * h) * length * bow[k];
+      const T cubed0 = bend0 * bend0 * bend0 - twist0, cubed1 = bend1 * bend1 * bend1 - twist1;
+      const T cross0 = 3.0 * bend0 * curl0, cross1 = 3.0 * bend1 * curl1;
+      cx = 0.5 * (c0 + c1) + (3.0 / 28.0) * (bend1 * s1 - bend0 * s0) +
+           (1.0 / 84.0) * (-bend0 * bend0 * c0 - curl0 * s0 - bend1 * bend1 * c1 - curl1 * s1) +
+           (1.0 / 1680.0) * (cubed0 * s0 - cross0 * c0 - cubed1 * s1 + cross1 * c1);
+      cy = 0.5 * (s0 + s1) + (3.0 / 28.0) * (bend0 * c0 - bend1 * c1) +
+           (1.0 / 84.0) * (-bend0 * bend0 * s0 + curl0 * c0 - bend1 * bend1 * s1 + curl1 * c1) +
+           (1.0 / 1680.0) * (-cubed0 * c0 - cross0 * s0 + cubed1 * c1 + cross1 * s1);
     }
     p.x[k] = p.x[k - 1] + (h * length) * cx;
     p.y[k] = p.y[k - 1] + (h * length) * cy;

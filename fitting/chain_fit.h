@@ -45,10 +45,11 @@
 // Evaluation. theta(u) and kappa(u) of a segment have closed forms (written with
 // expm1/log1p so that alpha = 0, alpha = 1 and the circle are ordinary points),
 // differentiated by Ceres' Jet (forward mode) on a coarser panel grid. Positions come
-// from panels (a Hermite rule from the ends' tangent, curvature and its slope plus the
-// middle; 3-point Gauss-Legendre at zero ends and sharp panels) and, between panel ends,
-// quintic Hermite interpolation; the Jacobian of a point is that of its own segment's
-// local curve plus the rigid motion the earlier segments give its start.
+// from panels (Hermite rules from the ends' tangent, curvature and its slopes: the
+// model's from the ends alone, the Jacobian's with the middle too; 3-point Gauss-Legendre
+// at zero ends and sharp panels) and, between panel ends, quintic Hermite interpolation;
+// the Jacobian of a point is that of its own segment's local curve plus the rigid motion
+// the earlier segments give its start.
 // Levenberg-Marquardt with the constraints in each step's KKT system and the bounds by
 // active sets (an unknown held at its bound, never clipped), geodesic acceleration and a
 // second-order correction, on bins of the points (the unknowns are few: about 3 per

@@ -566,14 +566,18 @@ TEST(FitDataRegression, ATightBendWhereNoCornerCanGoGivesWayToTheBound) {
 // next round's rerun was G2, bent no tighter than the tolerance and was 1.2 tolerances
 // off. Since stage 7's G2 pieces replace a kinked part's chain however far off (G2 before
 // the deviation, af305ef), the first fit is G2 already, 2.6 tolerances off (warned), and
-// bends no tighter: the guarantees are what this test keeps.
+// bends no tighter: the guarantees are what this test keeps. Its deviation follows
+// libm's last bits and the fitting model's (a miss past stage 7's room is not fitted
+// again): 1.0 tolerances with glibc's FMA paths, 4.0 without them since the model's
+// panels take one evaluation of the law each (2.6 before); the bound is a margin over
+// those.
 TEST(FitDataRegression, AKinkedCurvesRerunWithCornersReplacesItWhereItIsBetter) {
   const std::vector<Stroke> all = readStrokes(kData / "strokes/omniglot_small1_sample/csv/Early_Aramaic/character09/0259_07.csv");
   ASSERT_FALSE(all.empty());
   const FitResult r = fitStroke(test::handedOver(all[0], test::HandedOver::kWalked), {});
   expectG2(r);
   EXPECT_GE(r.quality.min_radius, r.tolerance / kTighterThanTolerance);
-  EXPECT_LE(r.quality.max_dev, 3.0 * r.tolerance);
+  EXPECT_LE(r.quality.max_dev, 4.5 * r.tolerance);
 }
 
 // Omniglot Balinese 0112_07's third stroke walked by a slow mouse: past stage 7's room its
