@@ -204,9 +204,11 @@ class LawEvaluator {
     }
   }
   // d2kappa/du2, given kappa and its slope at u (not at a zero end): kappa is a power
-  // -1/alpha of a variable linear in u at every law, so kappa'' = (1 + alpha) kappa'^2 / kappa.
+  // -1/alpha of a variable linear in u at every law, so kappa'' = (1 + alpha) kappa'^2 / kappa
+  // (0 for a line, and where kappa underflows: such a law is a line to doubles).
   T kappaBow(const T& kappa, const T& slope) const {
-    return zero_ == ZeroEnd::kBoth ? T(0.0) : T((1.0 + alpha_) * slope * slope / kappa);
+    if (zero_ == ZeroEnd::kBoth || valueOf(kappa) == 0.0) return T(0.0);
+    return (1.0 + alpha_) * slope * slope / kappa;
   }
   // dkappa/du at u, given kappa there (not at a zero end: its slope may be infinite).
   T kappaSlope(double u, const T& kappa) const {
