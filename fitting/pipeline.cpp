@@ -209,30 +209,19 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // (stage 7 fits a part's whole chain at once, at a cost growing with the cube of its
   // segments: it spends a budget of segments, the stages 1-6 chains it starts from)
   std::size_t polish_room = options.max_polish_segments, repair_room = options.max_polish_segments;
-  // A part's chain's stray (the curve going where the stroke did not: a loop between two
-  // points), measured once.
-  auto strayOfFit = [&](PartFit& f, const Part& part) {
-    if (std::isnan(f.stray)) f.stray = strayOf(f.segments, part, diag);
-    return f.stray;
-  };
-  // The larger of a part's chain's deviation from its points and its stray, each measured once.
-  auto worstOf = [&](PartFit& f, const Part& part) {
-    if (std::isnan(f.max_dev)) f.max_dev = maxDeviationOf(f.segments, part.points, diag);
-    return std::max(f.max_dev, strayOfFit(f, part));
-  };
   // (a refit of a part's chain past stage 7's room strays no further than the warning's
   // bound and that chain)
   auto straysNoFurther = [&](PartFit& refit, PartFit& f, const Part& part) {
-    return strayOfFit(refit, part) <= std::max(kStrayWarning * r.tolerance, strayOfFit(f, part));
+    return strayOfFit(refit, part, diag) <= std::max(kStrayWarning * r.tolerance, strayOfFit(f, part, diag));
   };
   // A one-LA-segment fit that misses the tolerance (oneSegmentPart) is kept where the
   // chains of several miss it by more (`others`: their largest deviation or stray).
   auto oneBeats = [&](PartFit& one, const Part& part, double others) {
-    return one.g2.usable() && !(others <= r.tolerance) && worstOf(one, part) < others;
+    return one.g2.usable() && !(others <= r.tolerance) && worstOf(one, part, diag) < others;
   };
   // (a part's chain outside the tolerance by at most kBoundsMiss)
   auto missesByLittle = [&](PartFit& f, const Part& part) {
-    const double miss = worstOf(f, part);
+    const double miss = worstOf(f, part, diag);
     return miss > r.tolerance && miss <= kBoundsMiss * r.tolerance;
   };
   // A part's chain that misses the tolerance, by at most kBoundsMiss, with a joint on the
@@ -290,7 +279,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       // 2-6 are not tried: on a logarithmic spiral of three turns at a tolerance of 8%
       // they took 180 ms, to end 93 tolerances off.)
       if (one && context.radius_bound == RadiusBound::kBoundThenFree && (missesOnTheBound(*one, part) || missesAtTightEnd(*one, part)))
-        return split && worstOf(*split, part) < worstOf(*one, part) ? std::move(*split) : std::move(*one);
+        return split && worstOf(*split, part, diag) < worstOf(*one, part, diag) ? std::move(*split) : std::move(*one);
       // (the chains from stages 2-6 are worth only what beats it, and get a few times the
       // work it took, as much where it misses by a little: a noisy spiral whose true
       // curve missed the tolerance by a few percent, as its one segment did, spent 1.3 s
@@ -302,8 +291,8 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       }
     }
     auto orOne = [&](PartFit&& fit) {
-      if (split && worstOf(*split, part) < worstOf(fit, part)) fit = std::move(*split);
-      return one && oneBeats(*one, part, worstOf(fit, part)) ? std::move(*one) : std::move(fit);
+      if (split && worstOf(*split, part, diag) < worstOf(fit, part, diag)) fit = std::move(*split);
+      return one && oneBeats(*one, part, worstOf(fit, part, diag)) ? std::move(*one) : std::move(fit);
     };
     // (stage 7 on a part's chain, timed; without `choose_segments`, its fit alone)
     auto polish = [&](PartFit& f, bool choose_segments, SplineStart spline_start = SplineStart::kShotThenHalved) {
@@ -351,7 +340,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
         const auto tp = Clock::now();
         PartFit pieces = fit;
         if (polishInPieces(pieces, part, context)) {
-          const double worst_pieces = worstOf(pieces, part), worst = worstOf(fit, part);
+          const double worst_pieces = worstOf(pieces, part, diag), worst = worstOf(fit, part, diag);
           // (the pieces are G2: over a kinked chain, G2 comes first, as among a part's starts)
           if (straysNoFurther(pieces, fit, part) &&
               (!fit.g2.usable() || worst_pieces <= worst || worst_pieces <= kAstrayFit * r.tolerance))
@@ -373,7 +362,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     polish(fit, true, other_starts ? SplineStart::kShot : SplineStart::kShotThenHalved);
     // Where that leaves a gap, a miss or a stray, other starts: the better result stays
     // (G2 first, then the larger of the deviation from the part's points and the stray).
-    auto measure = [&](PartFit& f) { return worstOf(f, part); };
+    auto measure = [&](PartFit& f) { return worstOf(f, part, diag); };
     auto misses = [&] { return !fit.g2.usable() || !(measure(fit) <= r.tolerance); };
     auto consider = [&](PartFit other, SplineStart spline_start = SplineStart::kShotThenHalved) {
       polish(other, true, spline_start);
@@ -420,7 +409,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     PartFit fit = fitOneWith(part, other_starts, context);
     if (!polishing || context.radius_bound != RadiusBound::kBoundThenFree || context.budget.spent() || r.over_polish_limit) return fit;
     if (!missesOnTheBound(fit, part)) return fit;
-    const auto worst = [&](PartFit& f) { return worstOf(f, part); };
+    const auto worst = [&](PartFit& f) { return worstOf(f, part, diag); };
     const std::size_t bounded_room = polish_room;
     polish_room = room;
     FitContext unbounded = context;
@@ -505,7 +494,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
     // (nor where the two as one bend tighter than the tolerance: that is a corner; nor
     // where they stray: a noisy stroke's two parts as one looped 29 tolerances away)
     PartFit smooth = fitOne(merged, false);
-    if (!smooth.g2.usable() || !(worstOf(smooth, merged) <= r.tolerance) || bendsTighterThan(smooth.segments, r.tolerance)) {
+    if (!smooth.g2.usable() || !(worstOf(smooth, merged, diag) <= r.tolerance) || bendsTighterThan(smooth.segments, r.tolerance)) {
       ++k;
       continue;
     }
@@ -549,7 +538,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       if (parts[k].closed || fit.segments.size() < 2 || !overExtremaCap(curveOf(fit.segments, false), diag, 0)) continue;
       std::optional<PartFit> arc =
           oneArcPart(betweenCorners(k), context, "one LA segment, for fewer extrema", kArcStartMiss * r.tolerance);
-      if (arc && arc->g2.usable() && worstOf(*arc, parts[k]) <= within && !bendsTighterThan(arc->segments, r.tolerance))
+      if (arc && arc->g2.usable() && worstOf(*arc, parts[k], diag) <= within && !bendsTighterThan(arc->segments, r.tolerance))
         fit = std::move(*arc);
     }
     // Then each open part's chain gives way to the circular arc between its ends that
@@ -568,7 +557,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
       PartFit& fit = fits[k];
       if (parts[k].closed || (fit.segments.size() == 1 && fit.segments[0].isCircular())) continue;  // (a line or an arc)
       std::optional<PartFit> arc = closestArcPart(betweenCorners(k), context, "a circular arc, for fewer extrema", within);
-      if (!arc || !(worstOf(*arc, parts[k]) <= within) || bendsTighterThan(arc->segments, r.tolerance)) continue;
+      if (!arc || !(worstOf(*arc, parts[k], diag) <= within) || bendsTighterThan(arc->segments, r.tolerance)) continue;
       std::swap(fit, *arc);
       const int with_arc = reversals();
       if (with_arc > now) {
@@ -589,7 +578,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   // fit's own measure of its distances only (0.91 of the tolerance by the quality figures').
   if (one) {
     double parts_worst = 0.0;
-    for (std::size_t k = 0; k < parts.size(); ++k) parts_worst = std::max(parts_worst, worstOf(fits[k], parts[k]));
+    for (std::size_t k = 0; k < parts.size(); ++k) parts_worst = std::max(parts_worst, worstOf(fits[k], parts[k], diag));
     if (oneBeats(*one, whole, parts_worst)) {
       parts = {std::move(whole)};
       fits = {std::move(*one)};
@@ -616,7 +605,7 @@ FitResult fitOnce(const Stroke& stroke, const FitOptions& options, double hook_t
   r.timings.quality_ms = msSince(tq);
   // Said from the measured figures, whichever stage or start the curve came from.
   double stray = 0.0;  // (fitOne measured most parts already)
-  for (std::size_t k = 0; k < parts.size(); ++k) stray = std::max(stray, strayOfFit(fits[k], parts[k]));
+  for (std::size_t k = 0; k < parts.size(); ++k) stray = std::max(stray, strayOfFit(fits[k], parts[k], diag));
   r.stray = stray;
   if (stray > kStrayWarning * r.tolerance)
     r.warnings.push_back("the curve strays up to " + std::to_string(stray) + " from the stroke, where no point is");

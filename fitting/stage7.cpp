@@ -574,11 +574,8 @@ bool polishInPiecesOf(PartFit& fit, const Part& part, const FitContext& context,
 }  // namespace
 
 bool polishInPieces(PartFit& fit, const Part& part, const FitContext& context) {
-  // (the stray kept in the fit: the caller measures the chain by it too)
-  auto worst = [&](PartFit& f) {
-    f.stray = strayOf(f.segments, part, context.diagonal);
-    return std::max(f.max_dev, f.stray);
-  };
+  // (each chain's stray kept in it: the caller measures the chain by it too)
+  auto worst = [&](PartFit& f) { return worstOf(f, part, context.diagonal); };
   PartFit best = fit;
   bool made = polishInPiecesOf(best, part, context, kPieceSpans);
   double best_worst = made ? worst(best) : INFINITY;
@@ -605,6 +602,16 @@ double strayOf(const std::vector<LaSegment>& segments, const Part& part, double 
   const bool longer = curve_length > kStrayLength * stroke_length;
   if (longer) return strayFromPoints(curveOf(segments, part.closed), part.points, diag);
   return tip_allowance == INFINITY ? 0.0 : strayBeyond(curveOf(segments, part.closed), part.points, diag, tip_allowance);
+}
+
+double strayOfFit(PartFit& fit, const Part& part, double diag) {
+  if (std::isnan(fit.stray)) fit.stray = strayOf(fit.segments, part, diag);
+  return fit.stray;
+}
+
+double worstOf(PartFit& fit, const Part& part, double diag) {
+  if (std::isnan(fit.max_dev)) fit.max_dev = maxDeviationOf(fit.segments, part.points, diag);
+  return std::max(fit.max_dev, strayOfFit(fit, part, diag));
 }
 
 // Makes the parts' chains meet at their corners. Stage 7 pins a part's ends to its

@@ -123,4 +123,11 @@ void joinAtCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts, c
 double strayOf(const std::vector<LaSegment>& segments, const Part& part, double diag,
                double tip_allowance = INFINITY);
 
+/// strayOf `fit`'s chain, measured once (kept in fit.stray, NaN until then).
+double strayOfFit(PartFit& fit, const Part& part, double diag);
+
+/// The larger of `fit`'s deviation from the part's points and its stray, each measured
+/// once (kept in fit.max_dev and fit.stray).
+double worstOf(PartFit& fit, const Part& part, double diag);
+
 }  // namespace la
