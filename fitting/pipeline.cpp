@@ -666,6 +666,7 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
   // (fitOnce); nullopt where no corner can go there.
   auto corneredAt = [&](const FitResult& from, const std::vector<Vec2>& earlier,
                         const std::vector<Vec2>& bends) -> std::optional<FitResult> {
+    if (bends.empty()) return std::nullopt;
     CleanStroke with = from.cleaned;  // (where no corner can go, no fit is tried)
     if (std::none_of(bends.begin(), bends.end(), [&](const Vec2& q) { return addCorner(with, cornerNear(with, q)); }))
       return std::nullopt;
@@ -714,26 +715,29 @@ FitResult fitStroke(const Stroke& stroke, const FitOptions& options) {
       const bool in_users_time = f && (!f->out_of_time || !budget.spent());
       return in_users_time && f->g2.usable() && !misses(*f) && !bendsTighterThanTolerance(*f);
     };
+    // (each refit judged once: misses() measures its stray, a pass over the curve)
     std::vector<Vec2> at = tightBends(r, kOnTheBound);
-    std::optional<FitResult> cornered = at.empty() ? std::nullopt : corneredAt(r, {}, at);
-    if (!mends(cornered) && r.quality.max_dev > r.tolerance) {
+    std::optional<FitResult> cornered = corneredAt(r, {}, at);
+    bool mended = mends(cornered);
+    if (!mended && r.quality.max_dev > r.tolerance) {
       at = {farthestPoint(r)};
       cornered = corneredAt(r, {}, at);
+      mended = mends(cornered);
       // (where that misses too, with a corner at its own farthest point as well: a noisy
       // crossbar's farthest point was beside the kink that needed the corner, whose fit
       // with both kept the tolerance, 0.53 off. Not under a cap on extrema, whose misses
       // are the cap's: a drawn ellipse capped at 2 came back as 5 segments between two
       // such corners, where it is the circle closest to its points.)
-      if (options.segmentation.max_extrema < 0 && cornered && !mends(cornered) &&
-          cornered->quality.max_dev > cornered->tolerance) {
+      if (options.segmentation.max_extrema < 0 && !mended && cornered && cornered->quality.max_dev > cornered->tolerance) {
         const Vec2 next = farthestPoint(*cornered);
         if (next != at.front()) {
           at.push_back(next);
           cornered = corneredAt(r, {}, at);
+          mended = mends(cornered);
         }
       }
     }
-    if (mends(cornered)) {
+    if (mended) {
       r = std::move(*cornered);
       r.out_of_time = false;
       corners_at = at;
