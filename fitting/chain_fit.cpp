@@ -205,10 +205,9 @@ class LawEvaluator {
   }
   // d2kappa/du2, given kappa and its slope at u (not at a zero end): kappa is a power
   // -1/alpha of a variable linear in u at every law, so kappa'' = (1 + alpha) kappa'^2 / kappa
-  // (0 for a line, and where kappa underflows: such a law is a line to doubles).
+  // (0 where kappa is: a line, or a law whose kappa underflows, a line to doubles).
   T kappaBow(const T& kappa, const T& slope) const {
-    if (zero_ == ZeroEnd::kBoth || valueOf(kappa) == 0.0) return T(0.0);
-    return (1.0 + alpha_) * slope * slope / kappa;
+    return valueOf(kappa) == 0.0 ? T(0.0) : T((1.0 + alpha_) * slope * slope / kappa);
   }
   // dkappa/du at u, given kappa there (not at a zero end: its slope may be infinite).
   T kappaSlope(double u, const T& kappa) const {
@@ -413,7 +412,7 @@ void buildPanels(const Law& law, Panels<T>& p) {
   // dkappa/du at the panel ends, and for doubles d2kappa/du2 (unset at a zero end)
   thread_local std::vector<T> slope, bow;
   slope.resize(n);
-  bow.resize(n);
+  if constexpr (!kJacobian) bow.resize(n);
   p.x[0] = p.y[0] = T(0.0);
   auto atZeroEnd = [&](std::size_t k) {
     return (law.zero == ZeroEnd::kStart && k == 0) || (law.zero == ZeroEnd::kEnd && k + 1 == n);
