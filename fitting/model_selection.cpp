@@ -423,7 +423,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     o.corners = corners;
     o.standard_errors = standard_errors;
     ChainFitResult r = fitChain(start, points, start_feet, o);
-    if (!r.improved || r.report.status != SolveStatus::kIterationLimit || r.max_distance <= options.tolerance ||
+    if (options.patience <= 0 || !r.improved || r.report.status != SolveStatus::kIterationLimit ||
+        r.max_distance <= options.tolerance ||
         r.max_distance > kHopelessTrial * keep_within || (keep_cap && breaksCap(r.segments, corners)))
       return r;
     ChainFitOptions longer = o;

@@ -80,7 +80,7 @@ struct SelectionOptions {
   /// units) where less: a segment of a spiral's several turns is split where it misses,
   /// near its tight centre.
   double split_margin = INFINITY;
-  int patience = 4;           // a fit outside the tolerance may take this many times fit.max_iterations more
+  int patience = 4;           // a fit outside the tolerance may take this many times fit.max_iterations more (0: none)
   int reweighing_rounds = 8;  // Lawson rounds before a split (0: none)
   /// A segment turning less than this (radians) is a collapse candidate; a joint whose
   /// curvature changes by less than this fraction on either side, a merge candidate.

@@ -99,6 +99,25 @@ TEST(SelectChain, SplitsAChainMissingASegment) { expectSplitToTheTruth(SplitCase
 // retry, selection stopped at 2 segments, 8 tolerances off).
 TEST(SelectChain, SplitsAfterLawsonRoundsThatBendTheJoint) { expectSplitToTheTruth(SplitCase(6)); }
 
+
+// A fit that stops at its iteration limit outside the tolerance goes on for `patience`
+// times its steps, and with a patience of 0 it does not (the fit across corners, where
+// the parts keep the tolerance: fitting/stage7.cpp). The split case's start misses a
+// segment, so no number of steps brings it within the tolerance.
+TEST(SelectChain, APatienceOfZeroStopsAMissAtTheIterationLimit) {
+  const SplitCase c(3);
+  SelectionOptions options = selection();
+  options.max_edits = 0;
+  options.fit.max_iterations = 2;
+  const ChainFitResult patient = selectChain(c.start, c.points, {}, options).fit;
+  ASSERT_GT(patient.max_distance, kTolerance);
+  EXPECT_GT(patient.report.iterations, 2);
+  options.patience = 0;
+  const ChainFitResult impatient = selectChain(c.start, c.points, {}, options).fit;
+  EXPECT_EQ(impatient.report.iterations, 2);
+  EXPECT_EQ(impatient.report.status, SolveStatus::kIterationLimit);
+  EXPECT_GT(impatient.max_distance, kTolerance);
+}
 // `chain` with segment i cut at arc length s into two segments of its law (the same curve).
 std::vector<LaSegment> cutAt(std::vector<LaSegment> chain, std::size_t i, double s) {
   const LaSegment whole = chain[i];
