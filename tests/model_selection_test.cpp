@@ -99,7 +99,6 @@ TEST(SelectChain, SplitsAChainMissingASegment) { expectSplitToTheTruth(SplitCase
 // retry, selection stopped at 2 segments, 8 tolerances off).
 TEST(SelectChain, SplitsAfterLawsonRoundsThatBendTheJoint) { expectSplitToTheTruth(SplitCase(6)); }
 
-
 // A fit that stops at its iteration limit outside the tolerance goes on for `patience`
 // times its steps, and with a patience of 0 it does not (the fit across corners, where
 // the parts keep the tolerance: fitting/stage7.cpp). The split case's start misses a
@@ -118,6 +117,7 @@ TEST(SelectChain, APatienceOfZeroStopsAMissAtTheIterationLimit) {
   EXPECT_EQ(impatient.report.status, SolveStatus::kIterationLimit);
   EXPECT_GT(impatient.max_distance, kTolerance);
 }
+
 // `chain` with segment i cut at arc length s into two segments of its law (the same curve).
 std::vector<LaSegment> cutAt(std::vector<LaSegment> chain, std::size_t i, double s) {
   const LaSegment whole = chain[i];
