@@ -402,8 +402,8 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   base.min_length = options.tolerance;
   base.standard_errors = false;  // (the first fit's, or the kept fit's at the end)
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
-  // stopped, for `patience` times as many steps: a long chain far from its start needs
-  // them, and only such a chain pays for them. A trial simplification that has to end
+  // stopped, for `patience` times as many steps (none at 0): a long chain far from its
+  // start needs them, and only such a chain pays for them. A trial simplification that has to end
   // within `keep_within` does not where it stopped further than kHopelessTrial times that
   // (the trials that fail so paid for most of stage 7's time).
   // Nor does a fit that must keep the cap on extrema (`keep_cap`: a split's) where its

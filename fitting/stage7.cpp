@@ -32,7 +32,10 @@ constexpr int kFitIterations = 8;
 // (With 8, the steps after the corners have moved reshape the sides for the sum of
 // squares alone: on the shared data, 4 gave 44 curvature extrema fewer of 5,911 for 10
 // segments more of 9,950 over data_benchmark --variants=8; 2 and 3, 36-37 extrema fewer
-// for 23-28 more; 5 and 6, 25 and 13 fewer for 24 and 12 more.)
+// for 23-28 more; 5 and 6, 25 and 13 fewer for 24 and 12 more.) And no more where it
+// misses (no patience): its chain is kept there only within the tolerance. With the
+// patience, such fits took 3% of the shared data's instructions and 15% of DejaVu's S,
+// for 6 curves of 232 that changed, each within the tolerance either way.
 constexpr int kPolishAcrossIterations = 4;
 // A step of stage 7's fit lowering the sum of squared distances by less than the square
 // of this fraction of the tolerance moves no point by a visible part of it: the fit stops
@@ -744,12 +747,11 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   // parts' nearly straight runs were tried as lines when their segments were chosen:
   // tried again across corners, none of 194 was kept on the shared data, variants
   // included, each a fit of the whole chain.)
-  // (nor go on where they miss: a fit that leaves the parts' tolerance is not kept, and
-  // steps past these reshape the sides for the sum of squares. Given the patience of a
-  // fit that misses, such fits took 3% of the shared data's instructions and 15% of
-  // DejaVu's S, for 6 curves of 232 that changed, each within the tolerance either way.)
   so.refine = so.straighten_runs = before > tol;
-  if (!so.refine) co.max_iterations = kPolishAcrossIterations, so.patience = 0;
+  if (!so.refine) {
+    co.max_iterations = kPolishAcrossIterations;
+    so.patience = 0;
+  }
   std::vector<PartFit> out, held;
   const SelectionResult free = selectChain(chain, points, {}, so);
   double after = split(free, out);
