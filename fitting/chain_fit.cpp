@@ -845,6 +845,13 @@ class ChainProblem {
   // tangential components of its two end points (pinned to the chain's ends), and two per segment:
   // the prior on its alpha, and the penalty on a length below min_length (0 above it).
   std::size_t ends() const { return layout_.pointsAtEnds() ? 2 : 0; }
+  // The largest distance of a point from the chain, by the residuals r (weights divided out).
+  double farthest(const Eigen::VectorXd& r) const {
+    double most = 0.0;
+    for (std::size_t k = 0; k < points_.size(); ++k)
+      if (weights_[k] > 0.0) most = std::max(most, std::abs(r[static_cast<Eigen::Index>(k)]) / weights_[k]);
+    return most;
+  }
   std::size_t rows() const { return points_.size() + ends() + 2 * layout_.segments; }
 
   // Projects the feet on the model (an open chain's end points stay at its ends) and
@@ -1138,14 +1145,21 @@ bool feetMoved(const ChainProblem& problem, const ChainModel& model, std::vector
   return false;
 }
 
+// Where minimize gives up: after `after` steps, points still further than `beyond`
+// (normalized units; ChainFitOptions::abandon_beyond).
+struct Abandon {
+  int after = 0;
+  double beyond = INFINITY;
+};
+
 // Levenberg-Marquardt on the merit |r|^2 + kConstraintMerit |c|^2 from x (and the
 // feet), each step from StepSystem, bent by geodesic acceleration, corrected back onto
 // the constraints. Leaves x, the feet and the model (with derivatives) at the best
-// point; counts iterations on.
+// point; counts iterations on; `abandoned` where it gave up.
 SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
                      int max_iterations, double relative_decrease, double least_decrease,
-                     const Budget& budget, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
-                     ChainModel& model, int& iterations) {
+                     const Budget& budget, const Abandon& abandon, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
+                     ChainModel& model, int& iterations, bool& abandoned) {
   auto merit = [](const Eigen::VectorXd& res, const Eigen::VectorXd& con) {
     return res.squaredNorm() + kConstraintMerit * con.squaredNorm();
   };
@@ -1254,6 +1268,10 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
     }
     // No step lowers the merit: a minimum to the steps' resolution.
     if (!accepted || converged) return SolveStatus::kConverged;
+    if (local + 1 == abandon.after && problem.farthest(r) > abandon.beyond) {
+      abandoned = true;
+      return SolveStatus::kIterationLimit;
+    }
   }
   return SolveStatus::kIterationLimit;
 }
@@ -1557,8 +1575,10 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   // caller's least_decrease, by a visible part of the tolerance).
   const double least = std::max(kNegligibleDecrease * noise * noise, options.least_decrease / (scale * scale));
   int iterations = 0;
+  bool abandoned = false;
+  const Abandon abandon = options.abandon_beyond > 0.0 ? Abandon{options.abandon_after, options.abandon_beyond / scale} : Abandon{};
   const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
-                                      options.budget, x, used_feet, model, iterations);
+                                      options.budget, abandon, x, used_feet, model, iterations, abandoned);
   used.evaluate(model, used_feet, frames, r, c);
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.
@@ -1666,7 +1686,9 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     result.segments = std::move(fitted);
     result.feet = std::move(feet);
     result.report = {status, iterations, std::sqrt(ssr_after / used_points.size()) * scale,
-                     status == SolveStatus::kConverged ? "fitted" : "fitted (iteration limit)"};
+                     status == SolveStatus::kConverged ? "fitted"
+                     : abandoned                       ? "abandoned: still beyond its bound"
+                                                       : "fitted (iteration limit)"};
   }
   result.ssr = 0.0;
   result.max_distance = 0.0;

@@ -128,6 +128,11 @@ struct ChainFitOptions {
   /// noise floor to stop at, and a relative stop loose enough to end their crawl also
   /// ends fits still far from the points.
   double least_decrease = 0.0;
+  /// A fit whose points (the binned ones it iterates on) are still further than this
+  /// from the chain after `abandon_after` steps stops there (world units; 0: never): a
+  /// trial that has to end within a distance a few steps cannot reach is dropped anyway.
+  double abandon_beyond = 0.0;
+  int abandon_after = 0;
   /// Iterate on at most this many points (0: all): an even subsample, the ends kept,
   /// each picked point standing in for its bin of neighbours by their centroid where the
   /// noise (below) is given and the chain is nearly straight across the bin, so the fit

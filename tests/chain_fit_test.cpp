@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <utility>
 
 #include <Eigen/Geometry>
@@ -207,6 +208,41 @@ TEST(ChainFit, AWorkBudgetStopsTheFitAfterTheStepsItAllows) {
     EXPECT_EQ(stopped[0].segments[i].length(), stopped[1].segments[i].length()) << "segment " << i;
     EXPECT_EQ(stopped[0].segments[i].kappaStart(), stopped[1].segments[i].kappaStart()) << "segment " << i;
   }
+}
+
+// A fit given up after its second step where its points are still further than a bound
+// (ChainFitOptions::abandon_beyond, the model selection's trials far off their bound):
+// it stops there, as a fit of two steps does, and says so; a bound its points are within
+// by then changes nothing.
+TEST(ChainFit, AnAbandonedFitStopsWhereItsPointsAreStillBeyondItsBound) {
+  const NoisyInflectionChain c;
+  ChainFitOptions whole;
+  whole.max_iterations = 200;
+  const ChainFitResult all = fitChain(c.start, c.points, {}, whole);
+  ChainFitOptions two_steps = whole;
+  two_steps.max_iterations = 2;
+  const ChainFitResult two = fitChain(c.start, c.points, {}, two_steps);
+  ASSERT_TRUE(all.report.usable()) << all.report.message;
+  ASSERT_EQ(two.report.status, SolveStatus::kIterationLimit);
+  ASSERT_GT(two.max_distance, 2.0 * all.max_distance);  // (two steps are far from the optimum)
+  ChainFitOptions beyond = whole;
+  beyond.abandon_after = 2;
+  beyond.abandon_beyond = 0.5 * two.max_distance;
+  const ChainFitResult abandoned = fitChain(c.start, c.points, {}, beyond);
+  EXPECT_EQ(abandoned.report.status, SolveStatus::kIterationLimit);
+  EXPECT_EQ(abandoned.report.iterations, 2);
+  EXPECT_NE(abandoned.report.message.find("abandoned"), std::string::npos) << abandoned.report.message;
+  ASSERT_EQ(abandoned.segments.size(), two.segments.size());
+  for (std::size_t i = 0; i < two.segments.size(); ++i) {
+    EXPECT_EQ(abandoned.segments[i].alpha(), two.segments[i].alpha()) << "segment " << i;
+    EXPECT_EQ(abandoned.segments[i].length(), two.segments[i].length()) << "segment " << i;
+  }
+  ChainFitOptions within = beyond;
+  within.abandon_beyond = 2.0 * two.max_distance;
+  const ChainFitResult kept_on = fitChain(c.start, c.points, {}, within);
+  EXPECT_EQ(kept_on.report.status, all.report.status);
+  EXPECT_EQ(kept_on.report.iterations, all.report.iterations);
+  EXPECT_EQ(kept_on.max_distance, all.max_distance);
 }
 
 // The result does not depend on where the points are or on their scale: moving and
