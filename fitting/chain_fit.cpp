@@ -1145,20 +1145,14 @@ bool feetMoved(const ChainProblem& problem, const ChainModel& model, std::vector
   return false;
 }
 
-// Where minimize gives up: after `after` steps, points still further than `beyond`
-// (normalized units; ChainFitOptions::abandon_beyond).
-struct Abandon {
-  int after = 0;
-  double beyond = INFINITY;
-};
-
 // Levenberg-Marquardt on the merit |r|^2 + kConstraintMerit |c|^2 from x (and the
 // feet), each step from StepSystem, bent by geodesic acceleration, corrected back onto
 // the constraints. Leaves x, the feet and the model (with derivatives) at the best
-// point; counts iterations on; `abandoned` where it gave up.
+// point; counts iterations on; `abandoned` where it gave up (ChainFitOptions::abandon,
+// its distance in normalized units).
 SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
                      int max_iterations, double relative_decrease, double least_decrease,
-                     const Budget& budget, const Abandon& abandon, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
+                     const Budget& budget, const ChainFitOptions::Abandon& abandon, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
                      ChainModel& model, int& iterations, bool& abandoned) {
   auto merit = [](const Eigen::VectorXd& res, const Eigen::VectorXd& con) {
     return res.squaredNorm() + kConstraintMerit * con.squaredNorm();
@@ -1576,9 +1570,9 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   const double least = std::max(kNegligibleDecrease * noise * noise, options.least_decrease / (scale * scale));
   int iterations = 0;
   bool abandoned = false;
-  const Abandon abandon = options.abandon_beyond > 0.0 ? Abandon{options.abandon_after, options.abandon_beyond / scale} : Abandon{};
-  const SolveStatus status = minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least,
-                                      options.budget, abandon, x, used_feet, model, iterations, abandoned);
+  const SolveStatus status =
+      minimize(layout, used, step_caps, options.max_iterations, options.relative_decrease, least, options.budget,
+               {options.abandon.after, options.abandon.beyond / scale}, x, used_feet, model, iterations, abandoned);
   used.evaluate(model, used_feet, frames, r, c);
   // The result in world units; each segment starts exactly where the previous ends
   // (LaSegment's adaptive quadrature), so G1 and G2 hold to rounding.

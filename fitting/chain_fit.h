@@ -128,11 +128,13 @@ struct ChainFitOptions {
   /// noise floor to stop at, and a relative stop loose enough to end their crawl also
   /// ends fits still far from the points.
   double least_decrease = 0.0;
-  /// A fit whose points (the binned ones it iterates on) are still further than this
-  /// from the chain after `abandon_after` steps stops there (world units; 0: never): a
+  /// A fit whose points (the binned ones it iterates on) are still further than `beyond`
+  /// (world units) from the chain after `after` steps stops there (0 steps: never): a
   /// trial that has to end within a distance a few steps cannot reach is dropped anyway.
-  double abandon_beyond = 0.0;
-  int abandon_after = 0;
+  struct Abandon {
+    int after = 0;
+    double beyond = INFINITY;
+  } abandon;
   /// Iterate on at most this many points (0: all): an even subsample, the ends kept,
   /// each picked point standing in for its bin of neighbours by their centroid where the
   /// noise (below) is given and the chain is nearly straight across the bin, so the fit

@@ -41,7 +41,7 @@ constexpr double kMarkedGain = 0.99;
 // times the distance it must keep is not given the patience of longer fits.
 constexpr double kHopelessTrial = 2.0;
 // ... nor more than kAbandonAfter steps where its points are still further than
-// kAbandonedTrial times that distance then (ChainFitOptions::abandon_beyond; a window's
+// kAbandonedTrial times that distance then (ChainFitOptions::abandon; a window's
 // fit in refitNearby too). Of the shared data's 443 trial fits, the 68 so far off after
 // 3 steps took 8% of the trials' time, and one of them ended within its bound; after 2
 // steps, or at 10 times, more did (data_benchmark: 2 and 4 curves changed, the latter
@@ -411,9 +411,9 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   base.standard_errors = false;  // (the first fit's, or the kept fit's at the end)
   // A fit that stops at its iteration limit outside the tolerance goes on from where it
   // stopped, for `patience` times as many steps (none at 0): a long chain far from its
-  // start needs them, and only such a chain pays for them. A trial simplification that has to end
-  // within `keep_within` does not where it stopped further than kHopelessTrial times that
-  // (the trials that fail so paid for most of stage 7's time).
+  // start needs them, and only such a chain pays for them. A trial simplification that
+  // has to end within `keep_within` does not where it stopped further than kHopelessTrial
+  // times that (the trials that fail so paid for most of stage 7's time).
   // Nor does a fit that must keep the cap on extrema (`keep_cap`: a split's) where its
   // steps broke it: going on converges further, which adds extrema rather than removes
   // them (under caps of 0, 1 and 2 on the shared data, no such fit was kept).
@@ -430,10 +430,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     ChainFitOptions o = base;
     o.corners = corners;
     o.standard_errors = standard_errors;
-    if (std::isfinite(keep_within)) {
-      o.abandon_beyond = kAbandonedTrial * keep_within;
-      o.abandon_after = kAbandonAfter;
-    }
+    if (std::isfinite(keep_within)) o.abandon = {kAbandonAfter, kAbandonedTrial * keep_within};
     ChainFitResult r = fitChain(start, points, start_feet, o);
     if (options.patience <= 0 || !r.improved || r.report.status != SolveStatus::kIterationLimit ||
         r.max_distance <= options.tolerance ||
@@ -528,8 +525,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         near_feet.push_back({e.feet[k].segment - lo, e.feet[k].u});
       }
     ChainFitOptions o = base;
-    o.abandon_beyond = kAbandonedTrial * keep_within;
-    o.abandon_after = kAbandonAfter;
+    o.abandon = {kAbandonAfter, kAbandonedTrial * keep_within};
     o.corners.clear();
     o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
     o.held_start.reset();

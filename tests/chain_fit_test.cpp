@@ -211,7 +211,7 @@ TEST(ChainFit, AWorkBudgetStopsTheFitAfterTheStepsItAllows) {
 }
 
 // A fit given up after its second step where its points are still further than a bound
-// (ChainFitOptions::abandon_beyond, the model selection's trials far off their bound):
+// (ChainFitOptions::abandon, the model selection's trials far off their bound):
 // it stops there, as a fit of two steps does, and says so; a bound its points are within
 // by then changes nothing.
 TEST(ChainFit, AnAbandonedFitStopsWhereItsPointsAreStillBeyondItsBound) {
@@ -226,8 +226,7 @@ TEST(ChainFit, AnAbandonedFitStopsWhereItsPointsAreStillBeyondItsBound) {
   ASSERT_EQ(two.report.status, SolveStatus::kIterationLimit);
   ASSERT_GT(two.max_distance, 2.0 * all.max_distance);  // (two steps are far from the optimum)
   ChainFitOptions beyond = whole;
-  beyond.abandon_after = 2;
-  beyond.abandon_beyond = 0.5 * two.max_distance;
+  beyond.abandon = {2, 0.5 * two.max_distance};
   const ChainFitResult abandoned = fitChain(c.start, c.points, {}, beyond);
   EXPECT_EQ(abandoned.report.status, SolveStatus::kIterationLimit);
   EXPECT_EQ(abandoned.report.iterations, 2);
@@ -238,7 +237,7 @@ TEST(ChainFit, AnAbandonedFitStopsWhereItsPointsAreStillBeyondItsBound) {
     EXPECT_EQ(abandoned.segments[i].length(), two.segments[i].length()) << "segment " << i;
   }
   ChainFitOptions within = beyond;
-  within.abandon_beyond = 2.0 * two.max_distance;
+  within.abandon.beyond = 2.0 * two.max_distance;
   const ChainFitResult kept_on = fitChain(c.start, c.points, {}, within);
   EXPECT_EQ(kept_on.report.status, all.report.status);
   EXPECT_EQ(kept_on.report.iterations, all.report.iterations);
