@@ -1406,6 +1406,23 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     if (kappa[0] * next < 0.0) return refuse("the held start's curvature changes sign along the first segment");
     if (kappa[0] != 0.0 && initial.front().isStraight()) return refuse("a held start that bends cannot start a line");
   }
+  // Arcs (ChainFitOptions::arcs): the later of a segment's two curvature values becomes
+  // an alias of the earlier.
+  std::vector<int> alias(kappa.size(), -1);
+  std::vector<bool> arc(n, false);
+  for (std::size_t i : options.arcs) {
+    if (i >= n) return refuse("arc " + std::to_string(i) + " is not a segment of the chain");
+    arc[i] = true;
+    const std::size_t a = at_start[i], b = at_end[i];
+    if (kappa[a] == 0.0 || kappa[b] == 0.0 || (kappa[a] < 0.0) != (kappa[b] < 0.0))
+      return refuse("arc " + std::to_string(i) + " does not bend one way from end to end");
+    const bool held_end = (options.window || options.held_start) && a == 0;
+    if (held_end || (options.window && b + 1 == kappa.size()))
+      return refuse("arc " + std::to_string(i) + " ends where the chain holds its curvature");
+    if (a == b || alias[a] >= 0 || alias[b] >= 0) continue;  // (a closed chain of one; named twice)
+    kappa[a] = kappa[b] = std::copysign(std::sqrt(kappa[a] * kappa[b]), kappa[a]);
+    alias[std::max(a, b)] = static_cast<int>(std::min(a, b));
+  }
   double kappa_max = 0.0;
   for (double k : kappa) kappa_max = std::max(kappa_max, std::abs(k));
   // (never above a joint of the initial chain: raising one would change the chain before
@@ -1417,6 +1434,10 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   const double ceiling = options.max_curvature > 0.0 ? std::max(options.max_curvature * scale, floor) : INFINITY;
   std::vector<int> kappa_unknown;
   for (double k : kappa) {
+    if (const int same = alias[kappa_unknown.size()]; same >= 0) {
+      kappa_unknown.push_back(kappa_unknown[same]);
+      continue;
+    }
     if (k == 0.0) {
       kappa_unknown.push_back(-1);
       continue;
@@ -1456,7 +1477,8 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
       // is the user's promise)
       const double lo = options.min_alpha;
       const double hi = (zero0 || zero1) ? std::min(kInflectionAlphaCap, options.max_alpha) : options.max_alpha;
-      layout.alpha.push_back(add(std::clamp(a, lo, hi), lo, hi, kMaxAlphaStep));
+      const double start_alpha = std::clamp(a, lo, hi);
+      layout.alpha.push_back(add(start_alpha, arc[i] ? start_alpha : lo, arc[i] ? start_alpha : hi, kMaxAlphaStep));
     }
     turning += initial[i].turning();
     if (i + 1 < n && corner[i + 1]) {
@@ -1588,7 +1610,8 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
       } else {
         const double k0 = law.zero == ZeroEnd::kStart ? 0.0 : xx[layout.kappa_start[i]] / scale;
         const double k1 = law.zero == ZeroEnd::kEnd ? 0.0 : xx[layout.kappa_end[i]] / scale;
-        chain.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
+        if (arc[i]) chain.push_back(LaSegment::arc(law.length * scale, start, theta, k0));  // (its alpha: any)
+        else chain.emplace_back(law.alpha, law.length * scale, start, theta, k0, k1);
       }
       start = chain.back().end();
       const int turn = layout.corner_turn[i + 1];

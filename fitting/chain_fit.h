@@ -97,6 +97,11 @@ struct ChainFitOptions {
     double theta = 0.0, kappa = 0.0;
   };
   std::optional<HeldStart> held_start;
+  /// Segments held as circular arcs: both ends share one curvature unknown (started at
+  /// the geometric mean of the two) and the alpha, meaningless on an arc, is held. Each
+  /// must bend (neither end curvature zero, both of one sign), and with `window` or
+  /// `held_start` neither end may be one the chain holds.
+  std::vector<std::size_t> arcs;
   /// The chain is a window of a longer G2 chain (its segments near an edit), to stay G2
   /// with the segments on either side: it keeps its start's position, tangent and
   /// curvature as `initial` has them, and ends at `window_end` (position, tangent) with

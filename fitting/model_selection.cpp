@@ -53,6 +53,13 @@ constexpr int kAbandonAfter = 3;
 // star's model selection took another path and missed its tolerance 1.8 times: a
 // window's fit stops at its own iteration limit, short of its optimum).
 constexpr double kHopelessWindow = 4.0;
+
+// A segment is tried as a circular arc (selectChain) only where, levelled alone, it would
+// move no further off than this many tolerances (|kappa1 - kappa0| L^2 / 8) between two
+// extrema, or this many at its part's end, which the fit across corners lets slide. Of
+// the 200 tried on the shared data without this screen, 117 were further, and 3 of them
+// were kept; the 83 nearer gave 16 arcs.
+constexpr double kArcStrayBetween = 1.0, kArcStrayAtEnd = 4.0;
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
@@ -494,6 +501,33 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     out.out_of_time = true;
     return true;
   };
+  // Segments lo .. hi - 1 of a chain alone: the points whose feet are on them (the feet
+  // renumbered from lo) and the options of their fit: ends free, no corners, not closed,
+  // unweighted, no arcs, given up where still far outside `keep_within` (as a trial).
+  struct Alone {
+    std::vector<LaSegment> segments;
+    std::vector<Vec2> points;
+    std::vector<ChainFoot> feet;
+    ChainFitOptions options;
+  };
+  auto alone = [&](const std::vector<LaSegment>& chain, const std::vector<ChainFoot>& chain_feet, std::size_t lo,
+                   std::size_t hi, double keep_within) {
+    Alone a;
+    a.segments.assign(chain.begin() + static_cast<std::ptrdiff_t>(lo), chain.begin() + static_cast<std::ptrdiff_t>(hi));
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (chain_feet[k].segment >= lo && chain_feet[k].segment < hi) {
+        a.points.push_back(points[k]);
+        a.feet.push_back({chain_feet[k].segment - lo, chain_feet[k].u});
+      }
+    ChainFitOptions& o = a.options = base;
+    o.abandon = {kAbandonAfter, kAbandonedTrial * keep_within};
+    o.corners.clear();
+    o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
+    o.held_start.reset();
+    o.weights.clear();
+    o.arcs.clear();
+    return a;
+  };
   // A trial edit's segments near `center` (two on either side, in the edited chain),
   // fitted alone to the points whose feet are on them. Where even they stay further than
   // kHopelessWindow times `keep_within` from those points, the whole chain's fit would
@@ -516,27 +550,15 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     if (lo >= hi || 2 * (hi - lo) > n) return nearby;
     for (std::size_t i = lo; i <= hi && i < n; ++i)
       if ((i > lo || i == 0) && e.pieces[i].atCorner()) return nearby;
-    std::vector<LaSegment> window(rebuilt.begin() + static_cast<std::ptrdiff_t>(lo), rebuilt.begin() + static_cast<std::ptrdiff_t>(hi));
-    std::vector<Vec2> near;
-    std::vector<ChainFoot> near_feet;
-    for (std::size_t k = 0; k < points.size(); ++k)
-      if (e.feet[k].segment >= lo && e.feet[k].segment < hi) {
-        near.push_back(points[k]);
-        near_feet.push_back({e.feet[k].segment - lo, e.feet[k].u});
-      }
-    ChainFitOptions o = base;
-    o.abandon = {kAbandonAfter, kAbandonedTrial * keep_within};
-    o.corners.clear();
-    o.closed = o.fix_start = o.fix_end = o.hold_corner_points = false;
-    o.held_start.reset();
-    o.weights.clear();
+    Alone window = alone(rebuilt, e.feet, lo, hi, keep_within);
     // (the segments from hi on are the chain's from hi + old_n - n on, unedited)
     const auto unedited = out.fit.segments.begin() + static_cast<std::ptrdiff_t>(hi + old_n - n);
     // (a closed chain's first segment collapsed changes its last one too: no window)
+    ChainFitOptions& o = window.options;
     o.window = hi < n && !(closed && center == 0);
     if (o.window) o.window_end = {unedited->start(), unedited->theta0()};
     // (a fit that does not improve on the edit reports the edit's own distances)
-    const ChainFitResult r = fitChain(window, near, near_feet, o);
+    const ChainFitResult r = fitChain(window.segments, window.points, window.feet, o);
     if (r.report.status == SolveStatus::kBadInput) return nearby;
     nearby.hopeless = r.max_distance > kHopelessWindow * keep_within;
     if (!o.window || !r.improved || nearby.hopeless) return nearby;
@@ -812,6 +834,74 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       }
     }
   };
+  // Fewer extrema by arcs, the objective's first term, on a chain within the tolerance: a
+  // segment between a curvature peak and a dip of its part (its curvature falls from one
+  // to the other), or between an extremum and its part's end (a side that curls into its
+  // corner or end), held as a circular arc (ChainFitOptions::arcs): the curvature levels
+  // out there instead of turning back. Kept where the chain keeps the tolerance and its
+  // curvature reverses less often (curvatureReversals, as lacheck counts them); the arcs
+  // kept are held by the selection's fits after. Each segment is tried once, where
+  // levelling it alone would not move it far (kArcStrayBetween), and screened as a trial
+  // edit is (refitNearby) by a fit of the segments about it alone, its ends free (not
+  // past a corner).
+  auto holdArcs = [&] {
+    if (!(out.fit.max_distance <= options.tolerance) || out.fit.feet.empty()) return;
+    std::vector<bool> tried;
+    for (bool changed = true; changed && !spent();) {
+      changed = false;
+      const std::vector<LaSegment> segs = out.fit.segments;
+      const std::size_t n = segs.size();
+      tried.resize(n, false);
+      std::vector<bool> corner(n + 1, false);  // (joint n: the end, or a closed chain's seam again)
+      for (const ChainCorner& c : out.corners) corner[c.joint] = true;
+      corner[n] = closed && corner[0];
+      // +1 where joint j is a smooth joint at a peak of |curvature|, -1 at a dip, else 0
+      auto extremum = [&](std::size_t j) {
+        if ((j == 0 && !closed) || j == n || corner[j]) return 0;
+        const double before = std::abs(segs[(j + n - 1) % n].kappaStart()), at = std::abs(segs[j].kappaStart());
+        const double after = std::abs(segs[j].kappaEnd());
+        if (at == 0.0) return 0;
+        return at > before && at > after ? 1 : at < before && at < after ? -1 : 0;
+      };
+      // (the segments lo..hi-1 about i, with arc i, fitted alone to the points on them)
+      auto hopeless = [&](std::size_t i) {
+        std::size_t lo = i, hi = i + 1;
+        while (lo > 0 && i - lo < 2 && !corner[lo]) --lo;
+        while (hi < n && hi - i < 3 && !corner[hi]) ++hi;
+        if (2 * (hi - lo) > n) return false;
+        Alone window = alone(segs, out.fit.feet, lo, hi, options.tolerance);
+        for (std::size_t a : base.arcs)
+          if (a >= lo && a < hi) window.options.arcs.push_back(a - lo);
+        const ChainFitResult r = fitChain(window.segments, window.points, window.feet, window.options);
+        return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * options.tolerance;
+      };
+      const int reversals = curvatureReversals(curveOf(segs, out.corners, closed), diagonal);
+      for (std::size_t i = 0; i < n && !changed && !spent(); ++i) {
+        const LaSegment& s = segs[i];
+        if (tried[i] || s.isStraight() || s.kappaStart() == 0.0 || s.kappaEnd() == 0.0) continue;
+        const int at_start = extremum(i), at_end = extremum(closed && i + 1 == n ? 0 : i + 1);
+        const bool start_ends = (i == 0 && !closed) || corner[i], end_ends = (i + 1 == n && !closed) || corner[i + 1];
+        const bool between = at_start != 0 && at_end != 0 && at_start != at_end;
+        const bool to_end = (at_start != 0 && end_ends) || (at_end != 0 && start_ends);
+        if (!between && !to_end) continue;
+        // (the segment levelled alone would move about |kappa1 - kappa0| L^2 / 8 off)
+        const double stray = std::abs(std::abs(s.kappaEnd()) - std::abs(s.kappaStart())) * s.length() * s.length() / 8.0;
+        if (stray > (between ? kArcStrayBetween : kArcStrayAtEnd) * options.tolerance) continue;
+        tried[i] = true;
+        base.arcs.push_back(i);
+        std::optional<Attempt> r = hopeless(i) ? std::nullopt
+                                               : attemptRebuilt(unedited(segs, out.fit.feet, out.corners), segs, options.tolerance);
+        if (r && r->fit.max_distance <= options.tolerance && !breaksCap(r->fit.segments, r->corners) &&
+            curvatureReversals(curveOf(r->fit.segments, r->corners, closed), diagonal) < reversals) {
+          take(std::move(*r));
+          ++out.arcs;
+          changed = true;
+        } else {
+          base.arcs.pop_back();
+        }
+      }
+    }
+  };
   // Under a cap on extrema, the chain keeps it from here on: merged down to it first, then
   // split towards the tolerance only where a split's refit keeps it (a split is a cut
   // that changes nothing, but the refit may add an extremum). The splits the cap would
@@ -859,6 +949,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   }
   if (options.refine) simplify(false);
   if (options.max_extrema >= 0) enforceCap();
+  if (options.level_arcs) holdArcs();
   if (options.fit.standard_errors && out.fit.improved && out.fit.alpha_standard_error.empty()) {
     ChainFitOptions o = base;
     o.corners = out.corners;

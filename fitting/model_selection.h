@@ -24,7 +24,11 @@
 //    points lie near a line meeting its neighbours near the corners' points (a side
 //    that curls into its corner has extrema a straight one has not);
 //  - bend: a line the worst point is off is bent towards it (one arc between corners
-//    or a chain's ends, else two segments), where another segment would be split.
+//    or a chain's ends, else two segments), where another segment would be split;
+//  - level: last, on a chain within the tolerance, a segment between a curvature peak
+//    and a dip of its part, or between an extremum and its part's end (a side curling
+//    into its corner), is held as a circular arc (ChainFitOptions::arcs), where the
+//    refit stays within the tolerance and its curvature reverses less often.
 //
 // A chain with corners (ChainFitOptions::corners) keeps them: no merge across a corner;
 // a short segment beside one (a hook) is a collapse candidate, the corner then taking its
@@ -102,6 +106,9 @@ struct SelectionOptions {
   /// selection chose the segments and tried their runs already (see fitAcrossCorners);
   /// sides between corners are still tried.
   bool straighten_runs = true;
+  /// Segments levelled into circular arcs where the curvature reverses less often (the
+  /// last edit, see above): for the chain's final selection (stage 7 across corners).
+  bool level_arcs = false;
   /// Curvature extrema allowed per smooth part (-1: no cap), counted and weighed as the
   /// quality figures count them, against this diagonal (the whole stroke's; 0: the points').
   int max_extrema = -1;
@@ -122,6 +129,7 @@ struct SelectionResult {
   std::vector<ChainCorner> corners;  // of that chain (options.fit.corners, renumbered by the edits)
   int splits = 0, collapses = 0, merges = 0, straightenings = 0;
   int cap_merges = 0;     // merges the cap on extrema forced
+  int arcs = 0;           // segments levelled into circular arcs
   bool over_cap = false;  // some part still has more extrema than the cap
   bool out_of_time = false;  // the budget stopped the edits
   std::vector<TrialEdit> not_kept;  // trial edits of the chain chosen that were not kept

@@ -748,6 +748,13 @@ bool fitAcrossCorners(std::vector<PartFit>& fits, const std::vector<Part>& parts
   // tried again across corners, none of 194 was kept on the shared data, variants
   // included, each a fit of the whole chain.)
   so.refine = so.straighten_runs = before > tol;
+  // (segments levelled into arcs where the parts keep the tolerance: with its corners
+  // free, a side that curled into one to reach its sample can let the curl go. Levelled
+  // in the parts' own selections too, the shared data's curves had 44 extrema fewer
+  // instead of 18, for 6% more instructions and a median time of 2.18 ms instead of
+  // 1.78; in the selection that chooses the segments here, an arc let a side of 6
+  // segments and 2 extrema replace a line)
+  so.level_arcs = !so.refine;
   if (!so.refine) {
     co.max_iterations = kPolishAcrossIterations;
     so.patience = 0;

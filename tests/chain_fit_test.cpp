@@ -739,5 +739,38 @@ TEST(ChainFit, BendsNoTighterThanMaxCurvature) {
   EXPECT_NEAR(std::abs(free.segments[0].kappaEnd()), 0.2, 0.01);
 }
 
+// ChainFitOptions::arcs: points of a chain whose middle segment is a circular arc
+// (curvature rising into it and on after it), fitted from a start whose middle segment
+// is not one (its curvature 0.016 -> 0.021, alpha 1) with that segment held as an arc:
+// it comes back an arc (alpha "inf", one curvature at both ends) with the truth's
+// curvature, the chain G2 and on the points. An arc that cannot be one (a zero end), or
+// is not in the chain, is refused.
+TEST(ChainFit, HoldsAnArcWhereAsked) {
+  const std::vector<LaSegment> first = buildChain({0, 0}, 0.2, 0.008, {{-1.0, 60.0, 0.018}});
+  std::vector<LaSegment> truth = first;
+  truth.push_back(LaSegment::arc(50.0, first.back().end(), first.back().theta(60.0), 0.018));
+  test::appendChain(truth, truth.back().end(), truth.back().theta(50.0), 0.018, {{1.0, 60.0, 0.03}});
+  const std::vector<Vec2> points = sampleChain(truth, 80, 0.0, 1);
+  const std::vector<LaSegment> start = buildChain({0, 0}, 0.2, 0.008, {{-1.0, 60.0, 0.016}, {1.0, 50.0, 0.021}, {1.0, 60.0, 0.03}});
+  ChainFitOptions options;
+  options.arcs = {1};
+  const ChainFitResult r = fitChain(start, points, {}, options);
+  ASSERT_TRUE(r.improved) << r.report.message;
+  ASSERT_EQ(r.segments.size(), 3u);
+  EXPECT_TRUE(std::isinf(r.segments[1].alpha()));
+  EXPECT_EQ(r.segments[1].kappaStart(), r.segments[1].kappaEnd());
+  EXPECT_NEAR(r.segments[1].kappaStart(), 0.018, 1e-5);
+  EXPECT_LT(r.max_distance, 1e-4);
+  EXPECT_LT(maxDistance(r.segments, points), 1e-4);
+  expectG2(r.segments, 1e-12);
+  // (without the arc held, the start's middle segment stays an LA segment of its own law)
+  EXPECT_FALSE(std::isinf(fitChain(start, points, {}).segments[1].alpha()));
+  const std::vector<LaSegment> inflected = buildChain({0, 0}, 0.2, 0.0, {{-1.0, 60.0, 0.018}, {1.0, 50.0, 0.021}});
+  options.arcs = {0};
+  EXPECT_EQ(fitChain(inflected, points, {}, options).report.status, SolveStatus::kBadInput);
+  options.arcs = {3};
+  EXPECT_EQ(fitChain(start, points, {}, options).report.status, SolveStatus::kBadInput);
+}
+
 }  // namespace
 }  // namespace la

@@ -326,6 +326,48 @@ TEST(SelectChain, StraightensSidesThatCurlIntoACorner) {
   EXPECT_EQ(selectChain(truth, points, {}, options).straightenings, 2);
 }
 
+// SelectionOptions::level_arcs, on noise-free points of chains whose curvature turns
+// back by a little: a peak and a dip (0.01 rising to 0.02, falling to 0.0195, rising on
+// to 0.03), or a dip before the chain's end (0.02 falling to 0.01, rising to 0.0112 at
+// the end: a curl). Fitted as they are (the selection not refining), they keep their
+// reversals; levelled, the segment between the two extrema, or between the dip and the
+// end, becomes a circular arc, the curvature no longer turns back, and the chain keeps
+// the tolerance.
+void expectLevelled(const std::vector<LaSegment>& truth, std::size_t arc) {
+  const std::vector<Vec2> points = sampleChain(truth, 80, 0.0, 1);
+  SelectionOptions options = selection(/*refine=*/false);
+  const SelectionResult plain = selectChain(truth, points, {}, options);
+  ASSERT_GE(curvatureReversals(plain.fit.segments), 1) << "the plain fit does not turn back: this test shows nothing";
+  EXPECT_EQ(plain.arcs, 0);
+  options.level_arcs = true;
+  const SelectionResult r = selectChain(truth, points, {}, options);
+  EXPECT_EQ(r.arcs, 1);
+  ASSERT_EQ(r.fit.segments.size(), truth.size());
+  EXPECT_TRUE(std::isinf(r.fit.segments[arc].alpha()));
+  EXPECT_EQ(curvatureReversals(r.fit.segments), 0);
+  EXPECT_LE(maxDistance(r.fit.segments, points), kTolerance);
+}
+
+TEST(SelectChain, LevelsTheSegmentBetweenAPeakAndADip) {
+  expectLevelled(buildChain({0, 0}, 0.2, 0.01, {{-1.0, 60.0, 0.02}, {1.0, 50.0, 0.0195}, {1.0, 60.0, 0.03}}), 1);
+}
+
+// A dip three times deeper (to 0.0185: levelled alone, the segment would move 0.47 off,
+// over twice the tolerance, kArcStrayBetween) is not tried.
+TEST(SelectChain, LeavesADipTooDeepToLevel) {
+  const std::vector<LaSegment> truth = buildChain({0, 0}, 0.2, 0.01, {{-1.0, 60.0, 0.02}, {1.0, 50.0, 0.0185}, {1.0, 60.0, 0.03}});
+  const std::vector<Vec2> points = sampleChain(truth, 80, 0.0, 1);
+  SelectionOptions options = selection(/*refine=*/false);
+  options.level_arcs = true;
+  const SelectionResult r = selectChain(truth, points, {}, options);
+  EXPECT_EQ(r.arcs, 0);
+  EXPECT_EQ(curvatureReversals(r.fit.segments), 2);
+}
+
+TEST(SelectChain, LevelsACurlAtTheChainsEnd) {
+  expectLevelled(buildChain({0, 0}, 0.2, 0.02, {{-1.0, 80.0, 0.01}, {1.0, 40.0, 0.0112}}), 1);
+}
+
 // A line whose points bow away from it (an arc of 150 units with a sagitta of 0.5,
 // 2.5 tolerances) is bent towards its worst point: one arc, the chain's ends being
 // free, within the tolerance. (Split, it would stay two lines, that is one line.)
