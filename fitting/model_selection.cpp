@@ -60,6 +60,7 @@ constexpr double kHopelessWindow = 4.0;
 // the 200 tried on the shared data without this screen, 117 were further, and 3 of them
 // were kept; the 83 nearer gave 16 arcs.
 constexpr double kArcStrayBetween = 1.0, kArcStrayAtEnd = 4.0;
+
 // Segments merged for the cap on extrema may turn this much (radians): a spiral's
 // monotone curvature is one LA segment however far it turns.
 constexpr double kCapMaxTurning = 8.0 * std::numbers::pi;
