@@ -584,6 +584,14 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
     const double f = (r.ssr - out.fit.ssr) / std::max(1, out.fit.unknowns - r.unknowns) / std::max(variance, 1e-300);
     return f < options.significance;
   };
+  // Which joints of the chosen chain (of n segments) are corners; joint n: the end, or a
+  // closed chain's seam again.
+  auto cornerJoints = [&](std::size_t n) {
+    std::vector<bool> corner(n + 1, false);
+    for (const ChainCorner& c : out.corners) corner[c.joint] = true;
+    corner[n] = closed && corner[0];
+    return corner;
+  };
   // Collapses (slivers first, the thinnest first) and merges (the weakest joint first),
   // one at a time, until none is kept.
   auto simplify = [&](bool slivers_only) {
@@ -591,9 +599,7 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
       changed = false;
       const std::vector<LaSegment> segs = out.fit.segments;
       const std::size_t n = segs.size();
-      std::vector<bool> corner(n + 1, false);  // (joint n: the end, or a closed chain's seam again)
-      for (const ChainCorner& c : out.corners) corner[c.joint] = true;
-      corner[n] = closed && corner[0];
+      const std::vector<bool> corner = cornerJoints(n);
       struct Candidate {
         double weakness;  // smaller first
         EditKind kind;
@@ -847,15 +853,13 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
   // past a corner).
   auto holdArcs = [&] {
     if (!(out.fit.max_distance <= options.tolerance) || out.fit.feet.empty()) return;
-    std::vector<bool> tried;
+    const std::size_t n = out.fit.segments.size();  // (an arc keeps the count and the corners)
+    const std::vector<bool> corner = cornerJoints(n);
+    std::vector<bool> tried(n, false);
+    int reversals = curvatureReversals(curveOf(out.fit.segments, out.corners, closed), diagonal);
     for (bool changed = true; changed && !spent();) {
       changed = false;
       const std::vector<LaSegment> segs = out.fit.segments;
-      const std::size_t n = segs.size();
-      tried.resize(n, false);
-      std::vector<bool> corner(n + 1, false);  // (joint n: the end, or a closed chain's seam again)
-      for (const ChainCorner& c : out.corners) corner[c.joint] = true;
-      corner[n] = closed && corner[0];
       // +1 where joint j is a smooth joint at a peak of |curvature|, -1 at a dip, else 0
       auto extremum = [&](std::size_t j) {
         if ((j == 0 && !closed) || j == n || corner[j]) return 0;
@@ -876,7 +880,6 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         const ChainFitResult r = fitChain(window.segments, window.points, window.feet, window.options);
         return r.report.status != SolveStatus::kBadInput && r.max_distance > kHopelessWindow * options.tolerance;
       };
-      const int reversals = curvatureReversals(curveOf(segs, out.corners, closed), diagonal);
       for (std::size_t i = 0; i < n && !changed && !spent(); ++i) {
         const LaSegment& s = segs[i];
         if (tried[i] || s.isStraight() || s.kappaStart() == 0.0 || s.kappaEnd() == 0.0) continue;
@@ -890,16 +893,20 @@ SelectionResult selectChain(const std::vector<LaSegment>& chain, const std::vect
         if (stray > (between ? kArcStrayBetween : kArcStrayAtEnd) * options.tolerance) continue;
         tried[i] = true;
         base.arcs.push_back(i);
-        std::optional<Attempt> r = hopeless(i) ? std::nullopt
-                                               : attemptRebuilt(unedited(segs, out.fit.feet, out.corners), segs, options.tolerance);
-        if (r && r->fit.max_distance <= options.tolerance && !breaksCap(r->fit.segments, r->corners) &&
-            curvatureReversals(curveOf(r->fit.segments, r->corners, closed), diagonal) < reversals) {
-          take(std::move(*r));
-          ++out.arcs;
-          changed = true;
-        } else {
-          base.arcs.pop_back();
+        if (!hopeless(i)) {
+          ChainFitResult r = fit(segs, out.fit.feet, out.corners, options.tolerance);
+          const bool keeps = r.report.status != SolveStatus::kBadInput && r.max_distance <= options.tolerance &&
+                             !breaksCap(r.segments, out.corners);
+          const int after = keeps ? curvatureReversals(curveOf(r.segments, out.corners, closed), diagonal) : reversals;
+          if (after < reversals) {
+            take(Attempt{std::move(r), out.corners});
+            reversals = after;
+            ++out.arcs;
+            changed = true;
+            continue;
+          }
         }
+        base.arcs.pop_back();
       }
     }
   };
