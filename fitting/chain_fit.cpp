@@ -67,6 +67,16 @@ constexpr double kBinBias = 0.1;
 constexpr double kShortSegmentWeight = 10.0;
 // Levenberg-Marquardt damping: start, growth on a rejected step, shrink on an accepted one.
 constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0, kMaxLambda = 1e10;
+// A step that the caps (kMaxAlphaStep...) would shorten to less than this fraction is
+// damped once more (by kLambdaGrowth) before it is shortened, where no constraint holds
+// the chain (there the move onto the constraints, which damping does not shorten, is
+// most of a long step). Scaled down whole, a Gauss-Newton step far beyond the caps keeps
+// a direction the linear model does not vouch for; damped, it turns towards the
+// gradient. On the shared data (data_benchmark --variants=8) 64 segments and 50 extrema
+// fewer of 9,238 and 4,953, walked strokes 55 and 51 fewer and 10% less time, for 0.4%
+// more instructions; damped up to three times by 4: 53 and 46 fewer for 2.5% more; damped
+// at a cap under a quarter: 24 and 38 more; damped also under constraints: 6% more.
+constexpr double kCappedStep = 0.5;
 // Weight of a constraint violation (squared) in the merit function that accepts steps:
 // the steps satisfy the linearized constraints, so this only keeps the iterates from
 // trading closure for fit.
@@ -1181,7 +1191,16 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
     for (; lambda < kMaxLambda; lambda *= kLambdaGrowth) {
       system.compute(a, g, cjac, x, c, layout, lambda, active);
       Eigen::VectorXd step = system.step();
-      step *= capFactor(step, step_caps);
+      double cap = capFactor(step, step_caps);
+      if (cap < kCappedStep && c.size() == 0) {
+        // (a step the caps would cut to under half: damped more first, which turns it
+        // towards the gradient, as a trust region would, before the caps shorten it)
+        lambda *= kLambdaGrowth;
+        system.compute(a, g, cjac, x, c, layout, lambda, active);
+        step = system.step();
+        cap = capFactor(step, step_caps);
+      }
+      step *= cap;
       {
         // Geodesic acceleration (Transtrum & Sethna 2012): the second directional
         // derivative of the residuals along the step (feet held), by a finite difference,
