@@ -72,10 +72,11 @@ constexpr double kInitialLambda = 1e-4, kLambdaGrowth = 8.0, kLambdaShrink = 4.0
 // the chain (there the move onto the constraints, which damping does not shorten, is
 // most of a long step). Scaled down whole, a Gauss-Newton step far beyond the caps keeps
 // a direction the linear model does not vouch for; damped, it turns towards the
-// gradient. On the shared data (data_benchmark --variants=8) 64 segments and 50 extrema
-// fewer of 9,238 and 4,953, walked strokes 55 and 51 fewer and 10% less time, for 0.4%
-// more instructions; damped up to three times by 4: 53 and 46 fewer for 2.5% more; damped
-// at a cap under a quarter: 24 and 38 more; damped also under constraints: 6% more.
+// gradient, as a trust region's step would. On the shared data (data_benchmark
+// --variants=8) 64 segments and 50 extrema fewer of 9,238 and 4,953, walked strokes 55
+// and 51 fewer, for 0.4% more instructions; damped up to three times by 4: 53 and 46
+// fewer for 2.5% more; at a cap under a quarter: 24 and 38 more; also under constraints:
+// 6% more instructions.
 constexpr double kCappedStep = 0.5;
 // Weight of a constraint violation (squared) in the merit function that accepts steps:
 // the steps satisfy the linearized constraints, so this only keeps the iterates from
@@ -1192,9 +1193,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
       system.compute(a, g, cjac, x, c, layout, lambda, active);
       Eigen::VectorXd step = system.step();
       double cap = capFactor(step, step_caps);
-      if (cap < kCappedStep && c.size() == 0) {
-        // (a step the caps would cut to under half: damped more first, which turns it
-        // towards the gradient, as a trust region would, before the caps shorten it)
+      if (cap < kCappedStep && layout.constraints() == 0) {
         lambda *= kLambdaGrowth;
         system.compute(a, g, cjac, x, c, layout, lambda, active);
         step = system.step();
