@@ -1181,6 +1181,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   std::vector<ChainFoot> trial_feet, corrected_feet, held;
   std::vector<FootFrame> trial_frames, corrected_frames;
   Eigen::VectorXd trial_r, trial_c, corrected_r, corrected_c;
+  const bool unconstrained = layout.constraints() == 0;
   for (int local = 0; local < max_iterations; ++local) {
     if (budget.spent()) break;
     ++iterations;
@@ -1189,16 +1190,16 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
     const Eigen::MatrixXd a = normalMatrix(jac);
     const Eigen::VectorXd g = jac.transpose() * r;
     bool accepted = false, converged = false;
+    bool damped_for_caps = false;  // (the trial's step damped once more already: kCappedStep)
     for (; lambda < kMaxLambda; lambda *= kLambdaGrowth) {
       system.compute(a, g, cjac, x, c, layout, lambda, active);
       Eigen::VectorXd step = system.step();
-      double cap = capFactor(step, step_caps);
-      if (cap < kCappedStep && layout.constraints() == 0) {
-        lambda *= kLambdaGrowth;
-        system.compute(a, g, cjac, x, c, layout, lambda, active);
-        step = system.step();
-        cap = capFactor(step, step_caps);
+      const double cap = capFactor(step, step_caps);
+      if (cap < kCappedStep && unconstrained && !damped_for_caps) {
+        damped_for_caps = true;
+        continue;
       }
+      damped_for_caps = false;
       step *= cap;
       {
         // Geodesic acceleration (Transtrum & Sethna 2012): the second directional
