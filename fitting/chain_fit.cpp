@@ -721,6 +721,7 @@ struct ChainModel : ChainGeometry {
   std::vector<std::array<int, 4>> columns;     // global unknown of each local one (-1: none)
   std::vector<std::array<double, 4>> factors;  // d local / d global
   std::vector<double> held;  // a window's held unknowns (Layout::held), as x has them
+  bool differentiated = false;  // the derivatives (addDerivatives) are those of this model
 };
 
 // The derivatives of a model built at x (buildModel without them): the Jet panels and
@@ -763,6 +764,13 @@ void addDerivatives(const Layout& layout, const Eigen::VectorXd& x, ChainModel& 
     }
     if (const int corner = layout.corner_turn[i + 1]; corner >= 0) next(2, corner) += 1.0;
   }
+  m.differentiated = true;
+}
+
+// (a model's derivatives where they are needed: a fit's last accepted step needs none,
+// unless its constraints are closed exactly or its standard errors measured after it)
+void differentiate(const Layout& layout, const Eigen::VectorXd& x, ChainModel& m) {
+  if (!m.differentiated) addDerivatives(layout, x, m);
 }
 
 // The interpolants of a model's panels, which points are projected on (Panels::frame).
@@ -775,6 +783,7 @@ void prepareFrames(ChainModel& m) {
 // constraints' violation rejects it is never projected on.
 bool buildModel(const Layout& layout, const Eigen::VectorXd& x, bool derivatives, ChainModel& m, bool frames = true) {
   const std::size_t n = layout.segments;
+  m.differentiated = false;
   m.closed = layout.closed;
   m.corner = layout.corner;
   m.laws.resize(n);
@@ -1158,9 +1167,9 @@ bool feetMoved(const ChainProblem& problem, const ChainModel& model, std::vector
 
 // Levenberg-Marquardt on the merit |r|^2 + kConstraintMerit |c|^2 from x (and the
 // feet), each step from StepSystem, bent by geodesic acceleration, corrected back onto
-// the constraints. Leaves x, the feet and the model (with derivatives) at the best
-// point; counts iterations on; `abandoned` where it gave up (ChainFitOptions::abandon,
-// its distance in normalized units).
+// the constraints. Leaves x, the feet and the model (its derivatives: differentiate) at
+// the best point; counts iterations on; `abandoned` where it gave up
+// (ChainFitOptions::abandon, its distance in normalized units).
 SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Eigen::VectorXd& step_caps,
                      int max_iterations, double relative_decrease, double least_decrease,
                      const Budget& budget, const ChainFitOptions::Abandon& abandon, Eigen::VectorXd& x, std::vector<ChainFoot>& feet,
@@ -1185,6 +1194,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
   for (int local = 0; local < max_iterations; ++local) {
     if (budget.spent()) break;
     ++iterations;
+    differentiate(layout, x, model);
     problem.jacobian(model, feet, frames, jac, cjac);
     budget.charge(static_cast<std::int64_t>(jac.rows()) * jac.cols());
     const Eigen::MatrixXd a = normalMatrix(jac);
@@ -1269,10 +1279,7 @@ SolveStatus minimize(const Layout& layout, const ChainProblem& problem, const Ei
       accepted = true;
       break;
     }
-    if (accepted) {  // (trial_model is at x)
-      std::swap(model, trial_model);
-      addDerivatives(layout, x, model);
-    }
+    if (accepted) std::swap(model, trial_model);  // (trial_model is at x, without derivatives)
     if (!accepted && feetMoved(problem, model, feet, frames, r, c)) {
       // (the feet were still on their way: the merit at x is measured anew)
       phi = merit(r, c);
@@ -1596,6 +1603,7 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
   const double ssr_before = r.head(data).squaredNorm();
   // (of the model at hand, with its feet, frames and residuals)
   auto measureStandardErrors = [&] {
+    differentiate(layout, x, model);
     const Eigen::VectorXd alpha_se = alphaStandardErrors(layout, used, model, used_feet, frames, r);
     result.alpha_standard_error.assign(alpha_se.data(), alpha_se.data() + alpha_se.size());
   };
@@ -1671,6 +1679,7 @@ ChainFitResult fitOrMeasureChain(const std::vector<LaSegment>& initial, const st
     fitted = build(model, x);
     exact = exactConstraints(fitted, x);
     for (int k = 0; k < kRestoreSteps && exact.size() > 0 && exact.norm() > kExactlyClosed; ++k) {
+      differentiate(layout, x, model);
       const Eigen::VectorXd moved =
           movedOntoConstraints(layout, x, constraintJacobian(layout, model), exact, /*hold_at_bounds=*/true);
       ChainModel trial;
