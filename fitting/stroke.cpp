@@ -730,9 +730,9 @@ CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options, double
               [](const LeftOutPoint& a, const LeftOutPoint& b) { return a.sample < b.sample; });
     result.left_out_fraction = leftOutFraction(raw, result.left_out);
   };
-  if (pts.size() < 3) {
+  if (pts.size() < 2) {
     publish();
-    fail("fewer than 3 distinct finite points", samples, result);
+    fail("fewer than 2 distinct finite points", samples, result);
   }
   if (collinear(pts.p)) {
     publish();

@@ -28,9 +28,10 @@
 //     more than hook_min_angle is cut. Directions are chords over an arc-length window,
 //     so 1-px quantization does not trigger it, and a smooth end curl is not a hook. 70%
 //     of the length and 3 points always remain. If a hook was cut, step 3 is tried again;
-//  5. throws StrokeError if fewer than 3 distinct points remain; points all on one line
-//     are a straight stroke, returned after step 1 (no trimming step removes points if
-//     that would leave the rest collinear);
+//  5. throws StrokeError if fewer than 2 distinct points remain (a dot: no direction);
+//     points all on one line, two distinct points too (a short dash), are a straight
+//     stroke, returned after step 1 (no trimming step removes points if that would leave
+//     the rest collinear);
 //  6. corners (detect_corners): see the options.
 //
 // Closed strokes: `points` do not repeat the first point at the end (the closing step
@@ -142,8 +143,9 @@ struct CleanStroke {
   //           + removed_duplicates + removed_resampled.
 };
 
-/// Throws StrokeError if fewer than 3 distinct finite points remain (nothing to fair);
-/// the message gives the counts. Points all on one line come back `straight`.
+/// Throws StrokeError if fewer than 2 distinct finite points remain (a dot: nothing to
+/// fair); the message gives the counts. Points all on one line (two distinct points
+/// among them) come back `straight`.
 /// `tolerance` is the fit's (absolute), which a hook's worth is tied to; 0: 0.5% of the
 /// points' bounding-box diagonal, FitOptions' default.
 CleanStroke cleanStroke(const Stroke& raw, const CleanupOptions& options = {}, double tolerance = 0.0);

@@ -5,7 +5,7 @@
 // read with la::readStrokes.
 //
 // Per stroke:
-//  - a stroke with fewer than 3 distinct points (decided here, independently of the
+//  - a stroke with fewer than 2 distinct points (decided here, independently of the
 //    clean-up code) must throw StrokeError, and only those; any other exception, or
 //    StrokeError on a fittable stroke, fails; a stroke whose points all lie on one line
 //    (decided here too) comes out as straight lines only;
@@ -82,8 +82,8 @@ bool degenerate(const Stroke& stroke, std::string& why, bool& collinear) {
   std::vector<Vec2> distinct;
   for (const Vec2& p : finite)
     if (distinct.empty() || (p - distinct.back()).norm() > kDistinctFraction * diag) distinct.push_back(p);
-  if (distinct.size() < 3) {
-    why = std::to_string(distinct.size()) + " distinct points";
+  if (distinct.size() < 2) {
+    why = "1 distinct point";
     return true;
   }
   // The line through the first point and the point farthest from it.

@@ -17,7 +17,7 @@
 //  - --tolerance, --max-extrema, --g2 newton|bisection|off, --paper-only, --closed;
 //  - a file of several strokes with a dot among them: one curve per stroke, in order,
 //    an error entry for the dot;
-//  - bad input (missing file, unparsable line, NaN, fewer than 3 distinct points, all
+//  - bad input (missing file, unparsable line, NaN, fewer than 2 distinct points, all
 //    points collinear): exit 1 and a message on stderr naming the file (and the line
 //    where there is one);
 //  - atomic writes: a failing run (unreadable input, or no stroke that can be fitted)
@@ -715,19 +715,24 @@ TEST_F(LafitCli, NaNIsReportedWithFileAndLineNumber) {
   expectInputError("nan.csv", "0,0\n1,1\nnan,2\n3,1\n4,0\n", {"nan.csv:3:", "NaN"});
 }
 
-TEST_F(LafitCli, FewerThanThreeDistinctPointsIsReportedByFile) {
-  expectInputError("few.csv", "0,0\n0,0\n1,1\n1,1\n", {"few.csv", "fewer than 3 distinct"});
+TEST_F(LafitCli, FewerThanTwoDistinctPointsIsReportedByFile) {
+  expectInputError("few.csv", "1,1\n1,1\n1,1\n", {"few.csv", "fewer than 2 distinct"});
 }
 
 TEST_F(LafitCli, CollinearPointsAreOneLine) {
-  write("line.csv", "0,0\n1,1\n2,2\n3,3\n4,4\n");
-  const Outcome r = lafit({"fit", "line.csv", "-o", "curve.json"});
-  ASSERT_EQ(r.status, 0) << r;
-  const json segments = readJson("curve.json").at("segments");
-  ASSERT_EQ(segments.size(), 1u);
-  EXPECT_EQ(segments[0].at("alpha"), "inf");
-  EXPECT_DOUBLE_EQ(segments[0].at("length").get<double>(), 4.0 * std::sqrt(2.0));
-  EXPECT_DOUBLE_EQ(segments[0].at("kappa_start").get<double>(), 0.0);
+  // (two distinct points too: a short dash)
+  const std::pair<std::string, double> lines[] = {{"0,0\n1,1\n2,2\n3,3\n4,4\n", 4.0 * std::sqrt(2.0)},
+                                                   {"0,0\n0,0\n3,4\n3,4\n", 5.0}};
+  for (const auto& [text, length] : lines) {
+    write("line.csv", text);
+    const Outcome r = lafit({"fit", "line.csv", "-o", "curve.json"});
+    ASSERT_EQ(r.status, 0) << r;
+    const json segments = readJson("curve.json").at("segments");
+    ASSERT_EQ(segments.size(), 1u) << text;
+    EXPECT_EQ(segments[0].at("alpha"), "inf");
+    EXPECT_DOUBLE_EQ(segments[0].at("length").get<double>(), length);
+    EXPECT_DOUBLE_EQ(segments[0].at("kappa_start").get<double>(), 0.0);
+  }
 }
 
 TEST_F(LafitCli, FitReadsLoneCarriageReturnLineEnds) {
@@ -781,14 +786,14 @@ TEST_F(LafitCli, UnreadableInputLeavesExistingOutputsUntouched) {
 TEST_F(LafitCli, StrokeThatCannotBeFittedLeavesAnExistingOutputUntouched) {
   // The whole file is one unfittable stroke: nothing to write, and a good curve from an
   // earlier run must not be replaced by an error entry.
-  write("line.csv", "0,0\n0,0\n1,1\n1,1\n");  // two distinct points
+  write("dot.csv", "1,1\n1,1\n1,1\n");  // one distinct point
   write("out.json", "previous\n");
-  const Outcome r = lafit({"fit", "line.csv", "-o", "out.json", "--svg", "out.svg"});
+  const Outcome r = lafit({"fit", "dot.csv", "-o", "out.json", "--svg", "out.svg"});
   EXPECT_EQ(r.status, kExitInputError) << r;
   EXPECT_TRUE(contains(r.err, "no output written")) << r;
   EXPECT_EQ(read("out.json"), "previous\n");
   EXPECT_FALSE(fs::exists(at("out.svg")));
-  EXPECT_EQ(listing(m_work), (std::set<std::string>{"line.csv", "out.json"}));
+  EXPECT_EQ(listing(m_work), (std::set<std::string>{"dot.csv", "out.json"}));
 }
 
 TEST_F(LafitCli, FailedWriteLeavesNoTemporaryFile) {
@@ -889,7 +894,7 @@ TEST_F(LafitCli, BatchFitsTheGoodFilesAndReportsTheBadOne) {
 // writes none; the summary counts its strokes.
 TEST_F(LafitCli, BatchWritesNothingForAFileWhoseStrokesAllFail) {
   copyData("strokes/dollar1_unistroke_s01_pilot/csv/medium/v.csv", "in/v.csv");
-  write("in/dots.csv", "0,0\n0,0\n\n5,5\n5,5\n6,6\n");  // two strokes of fewer than 3 distinct points
+  write("in/dots.csv", "0,0\n0,0\n\n5,5\n5,5\n");  // two strokes of one distinct point each
   const Outcome r = lafit({"batch", "in", "-o", "out"});
   EXPECT_EQ(r.status, kExitInputError) << r;
   EXPECT_EQ(listing(at("out")), (std::set<std::string>{"v.json"}));

@@ -118,7 +118,7 @@ void expectConsistent(const Stroke& raw, const CleanStroke& c) {
   EXPECT_EQ(raw.samples.size(), c.points.size() + c.trimmed_start + c.trimmed_end + c.removed_overlap +
                                     c.removed_invalid + c.removed_duplicates + c.removed_resampled);
   ASSERT_EQ(c.points.size(), c.source.size());
-  ASSERT_GE(c.points.size(), 3u);
+  ASSERT_GE(c.points.size(), c.straight ? 2u : 3u);  // (two distinct points are a line)
   // every raw sample either kept or listed as left out, once
   std::vector<int> seen(raw.samples.size(), 0);
   for (std::size_t s : c.source) ++seen[s];
@@ -202,16 +202,26 @@ std::string errorOf(const Stroke& raw, const CleanupOptions& options = {}) {
 }
 
 TEST(CleanStroke, ThrowsOnTooFewPoints) {
-  EXPECT_NE(errorOf(Stroke{}).find("fewer than 3 distinct finite points (0 samples"), std::string::npos)
+  EXPECT_NE(errorOf(Stroke{}).find("fewer than 2 distinct finite points (0 samples"), std::string::npos)
       << errorOf(Stroke{});
-  EXPECT_NE(errorOf(strokeOf({{0, 0}, {1, 1}})).find("fewer than 3"), std::string::npos);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const Stroke raw = strokeOf({{0, 0}, {nan, 0}, {0, 0}, {3, 4}, {3, 4}, {0, nan}});
+  const Stroke raw = strokeOf({{3, 4}, {nan, 0}, {3, 4}, {3, 4}, {0, nan}});
   const std::string message = errorOf(raw);
-  EXPECT_NE(message.find("fewer than 3 distinct finite points"), std::string::npos) << message;
-  EXPECT_NE(message.find("6 samples: 2 non-finite, 2 duplicates"), std::string::npos) << message;
-  EXPECT_NE(message.find("2 left"), std::string::npos) << message;
-  EXPECT_NE(errorOf(strokeOf({{7, 7}, {7, 7}, {7, 7}, {7, 7}})).find("fewer than 3"), std::string::npos);
+  EXPECT_NE(message.find("fewer than 2 distinct finite points"), std::string::npos) << message;
+  EXPECT_NE(message.find("5 samples: 2 non-finite, 2 duplicates"), std::string::npos) << message;
+  EXPECT_NE(message.find("1 left"), std::string::npos) << message;
+  EXPECT_NE(errorOf(strokeOf({{7, 7}, {7, 7}, {7, 7}, {7, 7}})).find("fewer than 2"), std::string::npos);
+}
+
+// Two distinct points are a straight stroke (a short dash, the dot of an exclamation
+// mark drawn as two samples): its line, not an error.
+TEST(CleanStroke, TwoDistinctPointsAreAStraightStroke) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const CleanStroke c = cleanStroke(strokeOf({{0, 0}, {nan, 0}, {0, 0}, {3, 4}, {3, 4}}));
+  EXPECT_TRUE(c.straight);
+  ASSERT_EQ(c.points.size(), 2u);
+  EXPECT_EQ(c.points.back(), Vec2(3, 4));
+  EXPECT_DOUBLE_EQ(c.diagonal, 5.0);
 }
 
 // A closed curve needs four points (stage 2's periodic spline): three points whose end
@@ -790,11 +800,10 @@ TEST(CleanStrokeRealData, MmgLongFirstStepsStayUnlessTheyAreAHook) {
 }
 
 TEST(CleanStrokeRealData, EveryRealStrokeCleansOrSaysWhy) {
-  // Every stroke of strokes/**/csv/**/*.csv with at least 3 distinct points cleans
-  // without throwing, straight exactly where its points are all on one line (3 Omniglot
-  // mouse lines); the others (a 2-point Omniglot dash, the 2-point MMG exclamation dot)
-  // throw StrokeError.
-  std::size_t strokes = 0, thrown = 0, straight = 0;
+  // Every stroke of strokes/**/csv/**/*.csv cleans without throwing, straight exactly
+  // where its points are all on one line (3 Omniglot mouse lines, and two strokes of 2
+  // points: an Omniglot dash and the MMG exclamation mark's dot). None has fewer than 2.
+  std::size_t strokes = 0, straight = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(kData / "strokes")) {
     const auto& path = entry.path();
     if (path.extension() != ".csv" || path.string().find("/csv/") == std::string::npos) continue;
@@ -806,7 +815,7 @@ TEST(CleanStrokeRealData, EveryRealStrokeCleansOrSaysWhy) {
       for (const auto& sample : raw.samples) {
         if (std::find(distinct.begin(), distinct.end(), sample.p) == distinct.end()) distinct.push_back(sample.p);
       }
-      bool collinear = false;
+      bool collinear = distinct.size() == 2;
       if (distinct.size() >= 3) {
         std::size_t far = 0;
         for (std::size_t i = 0; i < distinct.size(); ++i) {
@@ -818,24 +827,19 @@ TEST(CleanStrokeRealData, EveryRealStrokeCleansOrSaysWhy) {
         collinear = off_line <= 1e-9 * boxDiagonal(distinct);
       }
       SCOPED_TRACE(path.string() + " stroke " + std::to_string(k));
-      if (distinct.size() >= 3) {
-        try {
-          const CleanStroke c = cleanStroke(raw);
-          expectConsistent(raw, c);
-          EXPECT_EQ(c.straight, collinear);
-          straight += c.straight ? 1 : 0;
-        } catch (const StrokeError& e) {
-          ADD_FAILURE() << "threw: " << e.what();
-        }
-      } else {
-        ++thrown;
-        EXPECT_THROW(cleanStroke(raw), StrokeError);
+      ASSERT_GE(distinct.size(), 2u);
+      try {
+        const CleanStroke c = cleanStroke(raw);
+        expectConsistent(raw, c);
+        EXPECT_EQ(c.straight, collinear);
+        straight += c.straight ? 1 : 0;
+      } catch (const StrokeError& e) {
+        ADD_FAILURE() << "threw: " << e.what();
       }
     }
   }
   EXPECT_EQ(strokes, 96u + 34u + 77u);  // $1, MMG, Omniglot (SOURCES.md)
-  EXPECT_EQ(thrown, 2u);
-  EXPECT_EQ(straight, 3u);  // Omniglot strokes drawn along one pixel row or column
+  EXPECT_EQ(straight, 5u);  // Omniglot strokes along one pixel row or column, and the two of 2 points
 }
 
 }  // namespace
