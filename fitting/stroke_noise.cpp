@@ -121,11 +121,16 @@ double noiseSigma(const std::vector<Vec2>& p, const std::vector<std::size_t>& co
 
 constexpr double kGridRounding = 1e-3;  // in steps (the files print 6 decimals)
 constexpr double kMostGridCells = 1e6;  // across the points' range, along one axis
+constexpr int kMostStepParts = 8;       // the grid's step: the smallest change over at most this
 
 // The grid the points lie on along one coordinate: every value an integer number of
 // steps from the smallest (pixels, possibly shifted and scaled, as Omniglot's canvas
 // units are); the step 0 if they do not. The step is the smallest change between
-// consecutive points.
+// consecutive points, or a whole fraction of it (up to kMostStepParts): a pointer's
+// samples several pixels apart (a mouse's events at speed) may have no two neighbours
+// one pixel apart, and their grid went unseen (steps of 2-5 pixels read as a grid of 2:
+// no grid, a noise of 0 where most fourth differences are, and a tolerance under the
+// pixels' rounding, which the fit then followed).
 std::pair<double, double> gridAxis(const std::vector<Vec2>& p, int axis) {
   double step = INFINITY, lo = p.front()[axis], hi = lo;
   for (std::size_t i = 1; i < p.size(); ++i) {
@@ -135,13 +140,16 @@ std::pair<double, double> gridAxis(const std::vector<Vec2>& p, int axis) {
   }
   // (a change of a few ulps between two points is rounding, not a pixel: on a grid that
   // fine every double lies, and a resampled stroke passed for a pixel one)
-  if (!std::isfinite(step) || (hi - lo) / step > kMostGridCells) return {lo, 0.0};
-  step = (hi - lo) / std::round((hi - lo) / step);  // the printed step's rounding spread over the range
-  for (const Vec2& q : p) {
-    const double k = (q[axis] - lo) / step;
-    if (std::abs(k - std::round(k)) > kGridRounding) return {lo, 0.0};
+  if (!std::isfinite(step)) return {lo, 0.0};
+  for (int parts = 1; parts <= kMostStepParts && (hi - lo) / (step / parts) <= kMostGridCells; ++parts) {
+    const double h = (hi - lo) / std::round((hi - lo) / (step / parts));  // the printed step's rounding spread over the range
+    const bool on = std::all_of(p.begin(), p.end(), [&](const Vec2& q) {
+      const double k = (q[axis] - lo) / h;
+      return std::abs(k - std::round(k)) <= kGridRounding;
+    });
+    if (on) return {lo, h};
   }
-  return {lo, step};
+  return {lo, 0.0};
 }
 
 // The noise that neighbouring samples share, from the fourth differences of every second

@@ -1076,7 +1076,8 @@ TEST(PipelineCorners, CornerBetweenSamplesLandsWhereTheArmsMeet) {
 // within three noise sigmas of the true ones, the curve within the tolerance.
 // A zigzag of amplitude 10 whose legs are three samples each, on the pixel grid: its
 // vertices are corners, and the differences across them are not taken for noise (they
-// raised the tolerance to 6.2, 60% of the amplitude).
+// raised the tolerance to 6.2, 60% of the amplitude); the pixels' rounding raises it to
+// one pixel at most.
 TEST(PipelineCorners, AZigzagOfShortLegsKeepsItsCornersAndTheTolerance) {
   std::vector<Vec2> p;
   for (int leg = 0; leg < 12; ++leg)
@@ -1087,7 +1088,7 @@ TEST(PipelineCorners, AZigzagOfShortLegsKeepsItsCornersAndTheTolerance) {
   p.emplace_back(96.0, 10.0);
   const FitResult r = fitStroke(strokeOf(p));
   EXPECT_GE(r.cleaned.corners.size(), 10u);  // (of 11: the first leg is as short as a pen-down hook)
-  EXPECT_FALSE(raisedTolerance(r)) << r.tolerance;
+  EXPECT_LE(r.tolerance, 1.0);
   EXPECT_LE(r.quality.max_dev, r.tolerance);
 }
 

@@ -80,6 +80,25 @@ TEST(StrokeNoise, PointsOnAPixelGridHaveTheQuantization) {
   EXPECT_GE(n.sigma, std::sqrt(1.0 / 12.0));
 }
 
+// Samples 2 or 3 pixels apart along x and 3 or 4 along y (a mouse's events at speed):
+// no two neighbours one pixel apart, and the grid is one pixel all the same (read as
+// the smallest step, 2 and 3, it was no grid, and the pixels' rounding set no floor).
+TEST(StrokeNoise, PointsSeveralPixelsApartShowTheirGrid) {
+  std::vector<Vec2> p;
+  double x = 0.0, y = 0.0;
+  for (int i = 0; i < 40; ++i) {
+    p.emplace_back(x, y);
+    x += i % 2 ? 3.0 : 2.0;
+    y += i % 2 ? 4.0 : 3.0;
+  }
+  const std::optional<PixelGrid> grid = pixelGridOf(p);
+  ASSERT_TRUE(grid.has_value());
+  EXPECT_DOUBLE_EQ(grid->step.x(), 1.0);
+  EXPECT_DOUBLE_EQ(grid->step.y(), 1.0);
+  EXPECT_GE(noiseOf(p).floor, 1.0);
+  EXPECT_FALSE(pixelGridOf(noisyArc(0.3)).has_value());  // (points off any grid)
+}
+
 // Every sample a vertex: x steps by 8, y alternates +-10, with Gaussian noise of 1 on
 // each coordinate. The fourth differences are all about 16 * 10 = 160, alternating in
 // sign: read as noise they gave sigma ~ 28 and a floor above the zigzag's own size.
