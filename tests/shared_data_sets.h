@@ -159,6 +159,21 @@ inline Stroke walkedByPixels(const Stroke& stroke, double diagonal, bool along_p
   return out;
 }
 
+/// The stroke's samples as a pointer reports them on a screen where it spans `diagonal`
+/// pixels: each scaled and rounded to a pixel, one of a run on the same pixel kept (a
+/// mouse's or a tablet's events, several pixels apart where the pen moves fast).
+inline Stroke roundedToPixels(const Stroke& stroke, double diagonal) {
+  const double scale = diagonal / boundingBoxDiagonal(pointsOf(stroke));
+  Stroke out = stroke;
+  if (!std::isfinite(scale)) return out;
+  out.samples.clear();
+  for (StrokeSample s : stroke.samples) {
+    s.p = Vec2(std::round(scale * s.p.x()), std::round(scale * s.p.y()));
+    if (out.samples.empty() || out.samples.back().p != s.p) out.samples.push_back(s);
+  }
+  return out;
+}
+
 /// How a device or an importer may have handed the samples over (data_benchmark
 /// --handed-over): as drawn; each point averaged with its neighbours by [1 2 1] / 4, the
 /// ends kept (a tablet driver's smoothing: the noise then shared by neighbours); or with
@@ -168,12 +183,14 @@ inline Stroke walkedByPixels(const Stroke& stroke, double diagonal, bool along_p
 /// samples. The same strokes: the fit should read the same noise and draw about the same
 /// curves. Or walked by a slow mouse at a diagonal of 800 pixels (walkedByPixels): the
 /// samples' wiggles, scaled up, are shape at the pixels' scale, so the curves have more
-/// segments; the figures to watch are the time and the guarantees.
-enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints, kFilled, kResampled, kWalked };
+/// segments; the figures to watch are the time and the guarantees. Or rounded to the
+/// pixels of a diagonal of 150 (roundedToPixels): the samples as drawn, on a coarse grid.
+enum class HandedOver { kAsDrawn, kSmoothed, kMidpoints, kFilled, kResampled, kWalked, kRounded };
 
 inline Stroke handedOver(const Stroke& stroke, HandedOver how) {
   if (how == HandedOver::kMidpoints) return subdivided(stroke, 2);
   if (how == HandedOver::kWalked) return walkedByPixels(stroke, 800.0);
+  if (how == HandedOver::kRounded) return roundedToPixels(stroke, 150.0);
   if (how == HandedOver::kFilled || how == HandedOver::kResampled) {
     const double step = boundingBoxDiagonal(pointsOf(stroke)) / 300.0;
     if (!(step > 0.0)) return stroke;

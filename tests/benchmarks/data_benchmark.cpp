@@ -52,7 +52,8 @@
 //                  the strokes as drawn. Or `walked` pixel by pixel by a slow mouse at a
 //                  diagonal of 800 pixels: the samples' wiggles become shape at the
 //                  pixels' scale (more segments), the time and the guarantees are what
-//                  to watch
+//                  to watch. Or `rounded` to the pixels of a diagonal of 150: a pointer's
+//                  events, several pixels apart where it moves fast
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // --rows=FILE      also every stroke's figures, one CSV row each (data set, stroke, time ms,
 //                  segments, extrema_dense, max_dev/tol, min_radius/tol), to compare two
@@ -240,6 +241,7 @@ void printTable() {
               : how == test::HandedOver::kFilled    ? " (steps filled at diagonal / 300)"
               : how == test::HandedOver::kResampled ? " (resampled by arc length at diagonal / 300)"
               : how == test::HandedOver::kWalked    ? " (walked pixel by pixel at a diagonal of 800 pixels)"
+              : how == test::HandedOver::kRounded   ? " (rounded to the pixels of a diagonal of 150)"
                                                     : "",
               o.polish ? "defaults (stage 7 on)" : "paper only (stages 1-6)", cap, o.time_budget_ms);
   std::printf("%-12s %5s %7s %4s | %-28s | %-16s | %-16s | %-24s | %-21s | %-16s%s\n", "", "", "", "", "time ms", "segments",
@@ -326,6 +328,8 @@ bool takeFlags(int& argc, char** argv) {
       g_settings.handed_over = test::HandedOver::kResampled;
     } else if (arg == "--handed-over=walked") {
       g_settings.handed_over = test::HandedOver::kWalked;
+    } else if (arg == "--handed-over=rounded") {
+      g_settings.handed_over = test::HandedOver::kRounded;
     } else if (arg.starts_with("--handed-over=")) {
       return false;
     } else if (arg == "--paper-only") {
@@ -350,7 +354,7 @@ int main(int argc, char** argv) {
   if (!la::takeFlags(argc, argv)) {
     std::fprintf(stderr,
                  "usage: %s [--max-extrema=N] [--paper-only] [--time-budget=MS] [--variants=K] [--repeats=R] "
-                 "[--handed-over=smoothed|midpoints|filled|resampled|walked] [--data=DIR] [--rows=FILE] [benchmark flags]\n",
+                 "[--handed-over=smoothed|midpoints|filled|resampled|walked|rounded] [--data=DIR] [--rows=FILE] [benchmark flags]\n",
                  argv[0]);
     return 2;
   }
