@@ -142,7 +142,8 @@ std::pair<double, double> gridAxis(const std::vector<Vec2>& p, int axis) {
   // fine every double lies, and a resampled stroke passed for a pixel one)
   if (!std::isfinite(step)) return {lo, 0.0};
   for (int parts = 1; parts <= kMostStepParts && (hi - lo) / (step / parts) <= kMostGridCells; ++parts) {
-    const double h = (hi - lo) / std::round((hi - lo) / (step / parts));  // the printed step's rounding spread over the range
+    // (the printed step's rounding spread over the range)
+    const double h = (hi - lo) / std::round((hi - lo) / (step / parts));
     const bool on = std::all_of(p.begin(), p.end(), [&](const Vec2& q) {
       const double k = (q[axis] - lo) / h;
       return std::abs(k - std::round(k)) <= kGridRounding;
