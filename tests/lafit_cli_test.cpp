@@ -17,9 +17,9 @@
 //  - --tolerance, --max-extrema, --g2 newton|bisection|off, --paper-only, --closed;
 //  - a file of several strokes with a dot among them: one curve per stroke, in order,
 //    an error entry for the dot;
-//  - bad input (missing file, unparsable line, NaN, fewer than 2 distinct points, all
-//    points collinear): exit 1 and a message on stderr naming the file (and the line
-//    where there is one);
+//  - bad input (missing file, unparsable line, NaN, fewer than 2 distinct points): exit
+//    1 and a message on stderr naming the file (and the line where there is one); points
+//    all on one line, two distinct points among them, are one line;
 //  - atomic writes: a failing run (unreadable input, or no stroke that can be fitted)
 //    leaves existing output files byte for byte as they were, and no temporary file is
 //    left behind, not even when the final rename fails;
