@@ -129,6 +129,15 @@ inline Stroke resampledEvenly(const Stroke& stroke, double step) {
   return out;
 }
 
+/// `p` scaled by `scale` and rounded to its pixel.
+inline Vec2 pixelOf(const Vec2& p, double scale) { return Vec2(std::round(scale * p.x()), std::round(scale * p.y())); }
+
+/// `s` appended unless the last sample is on its point already (a pointer reports a
+/// pixel once while it stays there).
+inline void addUnlessRepeated(Stroke& out, const StrokeSample& s) {
+  if (out.samples.empty() || out.samples.back().p != s.p) out.samples.push_back(s);
+}
+
 /// The stroke as a slow mouse gives it: scaled to `diagonal` pixels, the pointer's path a
 /// Catmull-Rom spline through the samples (or, `along_polyline`, the straight steps between
 /// them), and a sample at every pixel it enters (integer coordinates, times interpolated),
@@ -140,22 +149,22 @@ inline Stroke walkedByPixels(const Stroke& stroke, double diagonal, bool along_p
   if (in.size() < 2 || !std::isfinite(scale)) return out;
   out.samples.clear();
   const std::size_t n = in.size();
-  auto pixel = [&](const Vec2& p) { return Vec2(std::round(scale * p.x()), std::round(scale * p.y())); };
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const Vec2 p0 = in[i > 0 ? i - 1 : 0].p, p1 = in[i].p, p2 = in[i + 1].p, p3 = in[std::min(i + 2, n - 1)].p;
     const int steps = 4 * std::max(1, static_cast<int>(std::ceil(scale * (p2 - p1).norm())));  // (no pixel skipped)
     for (int k = 0; k < steps; ++k) {
       const double t = static_cast<double>(k) / steps;
       StrokeSample s = between(in[i], in[i + 1], t);
-      s.p = pixel(along_polyline ? Vec2(p1 + (p2 - p1) * t)
-                                 : Vec2(0.5 * (2.0 * p1 + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t * t +
-                                               (3.0 * p1 - p0 - 3.0 * p2 + p3) * t * t * t)));
-      if (out.samples.empty() || out.samples.back().p != s.p) out.samples.push_back(s);
+      s.p = pixelOf(along_polyline ? Vec2(p1 + (p2 - p1) * t)
+                                   : Vec2(0.5 * (2.0 * p1 + (p2 - p0) * t + (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3) * t * t +
+                                                 (3.0 * p1 - p0 - 3.0 * p2 + p3) * t * t * t)),
+                    scale);
+      addUnlessRepeated(out, s);
     }
   }
   StrokeSample last = in.back();
-  last.p = pixel(last.p);
-  if (out.samples.back().p != last.p) out.samples.push_back(last);
+  last.p = pixelOf(last.p, scale);
+  addUnlessRepeated(out, last);
   return out;
 }
 
@@ -168,8 +177,8 @@ inline Stroke roundedToPixels(const Stroke& stroke, double diagonal) {
   if (!std::isfinite(scale)) return out;
   out.samples.clear();
   for (StrokeSample s : stroke.samples) {
-    s.p = Vec2(std::round(scale * s.p.x()), std::round(scale * s.p.y()));
-    if (out.samples.empty() || out.samples.back().p != s.p) out.samples.push_back(s);
+    s.p = pixelOf(s.p, scale);
+    addUnlessRepeated(out, s);
   }
   return out;
 }
