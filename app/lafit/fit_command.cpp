@@ -31,9 +31,9 @@ outputs:
   --jobs N        strokes fitted in parallel (default: all cores; the curves do not
                   depend on it)
 
-A stroke that cannot be fitted (a dot, two points) gets {"error": "why"} in the
-JSON and the others are still fitted; if none can be, no output file is written (an
-existing one is left as it was). Every output is replaced atomically.
+A stroke that cannot be fitted (a dot: fewer than two distinct points) gets
+{"error": "why"} in the JSON and the others are still fitted; if none can be, no output
+file is written (an existing one is left as it was). Every output is replaced atomically.
 
 exit status: 0 every stroke fitted, 1 the input could not be read or a stroke could
 not be fitted (message on stderr), 2 usage error
