@@ -123,6 +123,12 @@ constexpr double kGridRounding = 1e-3;  // in steps (the files print 6 decimals)
 constexpr double kMostGridCells = 1e6;  // across the points' range, along one axis
 constexpr int kMostStepParts = 8;       // the grid's step: the smallest change over at most this
 
+// Whether `value` lies a whole number of steps from `origin`, to the files' rounding.
+bool onGridLine(double value, double origin, double step) {
+  const double k = (value - origin) / step;
+  return std::abs(k - std::round(k)) <= kGridRounding;
+}
+
 // The grid the points lie on along one coordinate: every value an integer number of
 // steps from the smallest (pixels, possibly shifted and scaled, as Omniglot's canvas
 // units are); the step 0 if they do not. The step is the smallest change between
@@ -138,17 +144,14 @@ std::pair<double, double> gridAxis(const std::vector<Vec2>& p, int axis) {
     if (d > 0.0) step = std::min(step, d);
     lo = std::min(lo, p[i][axis]), hi = std::max(hi, p[i][axis]);
   }
-  // (a change of a few ulps between two points is rounding, not a pixel: on a grid that
-  // fine every double lies, and a resampled stroke passed for a pixel one)
   if (!std::isfinite(step)) return {lo, 0.0};
+  // (at most kMostGridCells: a change of a few ulps between two points is rounding, not a
+  // pixel; on a grid that fine every double lies, and a resampled stroke passed for a
+  // pixel one)
   for (int parts = 1; parts <= kMostStepParts && (hi - lo) / (step / parts) <= kMostGridCells; ++parts) {
     // (the printed step's rounding spread over the range)
     const double h = (hi - lo) / std::round((hi - lo) / (step / parts));
-    const bool on = std::all_of(p.begin(), p.end(), [&](const Vec2& q) {
-      const double k = (q[axis] - lo) / h;
-      return std::abs(k - std::round(k)) <= kGridRounding;
-    });
-    if (on) return {lo, h};
+    if (std::all_of(p.begin(), p.end(), [&](const Vec2& q) { return onGridLine(q[axis], lo, h); })) return {lo, h};
   }
   return {lo, 0.0};
 }
@@ -210,11 +213,7 @@ Noise noiseOf(const std::vector<Vec2>& p, const std::vector<std::size_t>& corner
 }
 
 bool PixelGrid::holds(const Vec2& q) const {
-  for (int axis : {0, 1}) {
-    const double k = (q[axis] - origin[axis]) / step[axis];
-    if (std::abs(k - std::round(k)) > kGridRounding) return false;
-  }
-  return true;
+  return onGridLine(q.x(), origin.x(), step.x()) && onGridLine(q.y(), origin.y(), step.y());
 }
 
 std::optional<PixelGrid> pixelGridOf(const std::vector<Vec2>& p) {
