@@ -56,9 +56,9 @@
 //                  events, several pixels apart where it moves fast
 // --data=DIR       the shared data folder (default: ../shared/data beside the sources)
 // --rows=FILE      also every stroke's figures, one CSV row each (data set, stroke, time ms,
-//                  segments, extrema_dense, max_dev/tol, min_radius/tol), to compare two
-//                  builds stroke by stroke: the model selection's paths move single strokes
-//                  that the distributions hide
+//                  segments, extrema_dense, max_dev/tol, min_radius/tol: data_rows.h), to
+//                  compare two builds stroke by stroke with compare_rows: the model
+//                  selection's paths move single strokes that the distributions hide
 // Google Benchmark's own flags (--benchmark_filter=glyphs, ...) work as usual.
 
 #include <benchmark/benchmark.h>
@@ -78,6 +78,7 @@
 #include "app/io/point_file.h"
 #include "core/atomic_file.h"
 #include "fitting/pipeline.h"
+#include "tests/benchmarks/data_rows.h"
 #include "tests/shared_data_sets.h"
 
 namespace la {
@@ -86,6 +87,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::DataSet;
 using test::kDataSets;
+using test::percentile;
 
 struct Settings {
   FitOptions options;  // the defaults, with the flags applied
@@ -181,14 +183,6 @@ void BM_FitDataSet(benchmark::State& state, std::size_t index) {
   g_results[index] = std::move(figures);
 }
 
-// Nearest rank: the smallest value with at least the fraction p of the values at or below
-// it (the 1e-9 keeps a product such as 0.9 * 10 from rounding up to the next rank).
-double percentile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size()) - 1e-9));
-  return values[std::max<std::size_t>(rank, 1) - 1];
-}
-
 // "median p90 p99 max" of one figure of the strokes, each in `format`.
 template <typename Figure>
 std::string distribution(const std::vector<StrokeFigures>& strokes, Figure figure, const char* format) {
@@ -279,13 +273,10 @@ void printTable() {
 
 // The --rows file: every fitted stroke's figures (written atomically).
 void writeRows() {
-  std::string csv = "data_set,stroke,ms,segments,extrema_dense,max_dev_over_tol,min_radius_over_tol\n";
-  char row[64];
+  std::string csv = std::string(test::kRowsHeader) + "\n";
   for (std::size_t i = 0; i < g_results.size(); ++i)
-    for (const StrokeFigures& s : g_results[i].fitted) {
-      std::snprintf(row, sizeof row, ",%.3f,%d,%d,%.6g,%.6g\n", s.ms, s.segments, s.extrema_dense, s.deviation, s.radius);
-      csv += std::string(kDataSets[i].name) + ",\"" + s.where + "\"" + row;
-    }
+    for (const StrokeFigures& s : g_results[i].fitted)
+      csv += test::rowCsv({kDataSets[i].name, s.where, s.ms, s.segments, s.extrema_dense, s.deviation, s.radius});
   writeFileAtomically(g_settings.rows, csv);
 }
 
