@@ -72,7 +72,6 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <type_traits>
 #include <vector>
 
 #include "app/io/point_file.h"
@@ -139,6 +138,11 @@ StrokeFigures figuresOf(std::string where, const FitResult& r, int cap) {
   return f;
 }
 
+// A stroke's row of the --rows file (data_rows.h).
+test::StrokeRow rowOf(const char* data_set, const StrokeFigures& s) {
+  return {data_set, s.where, s.ms, s.segments, s.extrema_dense, s.deviation, s.radius};
+}
+
 void BM_FitDataSet(benchmark::State& state, std::size_t index) {
   const DataSet& set = kDataSets[index];
   const std::vector<fs::path> files = test::filesOf(g_settings.data / set.folder, set.extension);
@@ -167,8 +171,7 @@ void BM_FitDataSet(benchmark::State& state, std::size_t index) {
         bool differs = false;  // (the figures of a repeat from the first fit's)
         for (int repeat = 1; repeat < g_settings.repeats; ++repeat) {
           const StrokeFigures again = figuresOf(where[i], fitStroke(strokes[i], options), options.segmentation.max_extrema);
-          differs = differs || again.segments != fastest.segments || again.extrema_dense != fastest.extrema_dense ||
-                    again.deviation != fastest.deviation || again.radius != fastest.radius;
+          differs = differs || !test::sameFigures(rowOf(set.name, again), rowOf(set.name, fastest));
           fastest.ms = std::min(fastest.ms, again.ms);
         }
         if (differs) figures.nondeterministic.push_back(where[i]);
@@ -276,7 +279,7 @@ void writeRows() {
   std::string csv = std::string(test::kRowsHeader) + "\n";
   for (std::size_t i = 0; i < g_results.size(); ++i)
     for (const StrokeFigures& s : g_results[i].fitted)
-      csv += test::rowCsv({kDataSets[i].name, s.where, s.ms, s.segments, s.extrema_dense, s.deviation, s.radius});
+      csv += test::rowCsv(rowOf(kDataSets[i].name, s));
   writeFileAtomically(g_settings.rows, csv);
 }
 
@@ -284,15 +287,7 @@ void writeRows() {
 // false if malformed (NaN included).
 template <typename T>
 bool numberFlag(std::string_view arg, std::string_view name, T lo, T hi, T& out) {
-  const std::string value(arg.substr(name.size()));
-  std::size_t used = 0;
-  try {
-    if constexpr (std::is_same_v<T, int>) out = std::stoi(value, &used);
-    else out = std::stod(value, &used);
-  } catch (const std::logic_error&) {
-    return false;
-  }
-  return used == value.size() && out >= lo && out <= hi;
+  return test::wholeNumber(std::string(arg.substr(name.size())), out) && out >= lo && out <= hi;
 }
 
 // Takes this program's flags out of argv (Google Benchmark rejects flags it does not

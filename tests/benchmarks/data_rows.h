@@ -33,7 +33,10 @@ inline constexpr const char* kRowsHeader = "data_set,stroke,ms,segments,extrema_
 // A CSV field, quoted (RFC 4180: a quote inside doubled).
 inline std::string quoted(const std::string& field) {
   std::string out = "\"";
-  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  for (char c : field) {
+    if (c == '"') out += '"';
+    out += c;
+  }
   return out + "\"";
 }
 
@@ -66,6 +69,19 @@ inline const char* csvFields(const std::string& line, std::vector<std::string>& 
   return nullptr;
 }
 
+// `text`, all of it, as an int or a double into `out`; false if it is not one.
+template <typename T>
+bool wholeNumber(const std::string& text, T& out) {
+  std::size_t used = 0;
+  try {
+    if constexpr (std::is_same_v<T, int>) out = std::stoi(text, &used);
+    else out = std::stod(text, &used);
+  } catch (const std::logic_error&) {
+    return false;
+  }
+  return used == text.size();
+}
+
 // The rows of a --rows file's text; throws std::runtime_error naming `file`, the line and
 // what is wrong with it.
 inline std::vector<StrokeRow> readRows(const std::string& text, const std::string& file) {
@@ -76,14 +92,7 @@ inline std::vector<StrokeRow> readRows(const std::string& text, const std::strin
     throw std::runtime_error(file + ":" + std::to_string(line_number) + ": " + what);
   };
   auto number = [&](const std::string& field, const char* name, auto& out) {
-    std::size_t used = 0;
-    try {
-      if constexpr (std::is_same_v<std::decay_t<decltype(out)>, int>) out = std::stoi(field, &used);
-      else out = std::stod(field, &used);
-    } catch (const std::logic_error&) {
-      used = 0;
-    }
-    if (field.empty() || used != field.size()) fail(std::string(name) + " is not a number: \"" + field + "\"");
+    if (!wholeNumber(field, out)) fail(std::string(name) + " is not a number: \"" + field + "\"");
   };
   for (std::size_t start = 0; start < text.size();) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
